@@ -1,0 +1,74 @@
+"""The ``ucsio`` command: argument parsing and exit codes, nothing else.
+
+Each subcommand lives in ``ucsio.commands.<name>`` with ``add_arguments`` and
+``run``; those modules import nothing heavy at the top, so ``ucsio frames``
+never pays for scipy.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from .errors import UcsioError
+
+COMMANDS = {
+    "frames": "list every frame in controller files",
+    "check": "parse, prove the byte-exact round trip, and lint",
+    "solve": "fit the measured UCS to laser/robot point pairs (Horn's method)",
+    "diff": "simulated vs measured frame, or every frame of two files",
+    "patch": "write a frame back into a controller file",
+    "batch": "solve and diff many datasets from a TOML manifest",
+    "demo": "the whole job on shipped example cells",
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="ucsio",
+        description="Measured user frames for ABB RAPID and KUKA KRL controller files.")
+    parser.add_argument("--version", action="version", version=_version())
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    for name, help_text in COMMANDS.items():
+        try:
+            module = importlib.import_module(f"ucsio.commands.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"ucsio.commands.{name}":
+                raise
+            continue  # not built yet
+        p = sub.add_parser(name, help=help_text, description=module.__doc__)
+        p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
+        module.add_arguments(p)
+        p.set_defaults(_module=module)
+    return parser
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return "ucsio " + version("ucsio")
+    except PackageNotFoundError:
+        return "ucsio (source)"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args._module.run(args) or 0)
+    except UcsioError as exc:
+        print(f"ucsio: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        return 0
+
+
+def entry() -> None:
+    sys.exit(main())
+
+
+if __name__ == "__main__":
+    entry()

@@ -1,0 +1,90 @@
+"""A parsed controller file: the document, its frames, and lint findings.
+
+``load(path)`` picks the vendor from the file's name and first words, so a
+KUKA ``.dat`` and an ABB ``.mod`` go to the right parser.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .document import Document, looks_binary
+from .errors import UcsioError
+from .frames import Frame
+
+ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
+KUKA_SUFFIXES = {".dat", ".src", ".sub"}
+
+
+@dataclass(frozen=True)
+class Lint:
+    line: int
+    col: int
+    code: str
+    message: str
+
+    def as_dict(self) -> dict:
+        return {"line": self.line, "col": self.col, "code": self.code, "message": self.message}
+
+
+@dataclass
+class ControllerFile:
+    document: Document
+    vendor: str
+    frames: list[Frame] = field(default_factory=list)
+    lints: list[Lint] = field(default_factory=list)
+    # vendor-specific extras (KUKA tables, ABB declarations); parsers fill them.
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def path(self) -> str:
+        return self.document.path
+
+    def lint(self, offset: int, code: str, message: str) -> None:
+        line, col = self.document.line_col(offset)
+        self.lints.append(Lint(line, col, code, message))
+
+    def matches(self, name: str) -> list[Frame]:
+        key = name.strip().casefold()
+        return [f for f in self.frames if any(n.casefold() == key for n in f.names)]
+
+    def frame(self, name: str) -> Frame:
+        """The frame called ``name`` (case-insensitive; KUKA labels too)."""
+        found = self.matches(name)
+        if not found:
+            raise UcsioError(f"no frame named {name!r} (ucsio frames lists them)", file=self.path)
+        distinct = {id(f) for f in found}
+        if len(distinct) > 1:
+            which = ", ".join(f"{f.name} (line {f.line})" for f in found)
+            raise UcsioError(f"frame name {name!r} is ambiguous: {which}", file=self.path)
+        return found[0]
+
+
+def detect_vendor(doc: Document) -> str:
+    suffix = Path(doc.path).suffix.lower()
+    if suffix in ABB_SUFFIXES:
+        return "abb"
+    if suffix in KUKA_SUFFIXES:
+        return "kuka"
+    head = doc.text[:4096].lstrip("\ufeff \t\r\n").upper()
+    if head.startswith(("%%%", "MODULE", "!")):
+        return "abb"
+    return "kuka"
+
+
+def parse(doc: Document, full: bool = False) -> ControllerFile:
+    """Parse a document. ``full`` also runs the whole-file grammar over every
+    byte (what ``check`` does); without it only what frames need is parsed."""
+    if looks_binary(doc.raw):
+        raise UcsioError("binary or encrypted file: refusing to read or patch it", file=doc.path)
+    vendor = detect_vendor(doc)
+    if vendor == "abb":
+        from . import rapid
+        return rapid.parse(doc, full=full)
+    from . import krl
+    return krl.parse(doc, full=full)
+
+
+def load(path: str | os.PathLike, full: bool = False) -> ControllerFile:
+    return parse(Document.read(path), full=full)

@@ -1,0 +1,148 @@
+"""The bytes of a controller file, and edits that make new bytes.
+
+A Document owns the file's text; everything parsed from it (frames, values)
+points into it by character offsets. Serialising an unedited document gives the
+original bytes back exactly; an edit replaces exactly the spans it names and
+nothing else (the tomlkit / LibCST model: the document owns the bytes, semantic
+objects only point into them).
+
+Encoding: a UTF-8 BOM or valid UTF-8 is read as UTF-8; anything else as
+Latin-1. Latin-1 maps every byte to one character and back, so Windows-1252
+files (KUKA umlauts, Spanish comments) round-trip byte for byte even where
+cp1252 leaves a byte undefined. Line endings are never translated: the text
+keeps CR, LF, CRLF and ABB's CR CR LF exactly as they were.
+"""
+from __future__ import annotations
+
+import bisect
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import UcsioError
+
+BOM = b"\xef\xbb\xbf"
+
+
+@dataclass(frozen=True)
+class Span:
+    """A half-open character range [start, end) in a document's text."""
+
+    start: int
+    end: int
+
+
+@dataclass(frozen=True)
+class Edit:
+    """Replace the text of ``span`` with ``text``."""
+
+    span: Span
+    text: str
+
+
+class Document:
+    """Decoded text of one file plus what is needed to write it back."""
+
+    def __init__(self, raw: bytes, path: str | os.PathLike | None = None):
+        self.path = str(path) if path is not None else "<memory>"
+        self.raw = raw
+        self.bom = raw.startswith(BOM)
+        body = raw[len(BOM):] if self.bom else raw
+        try:
+            self.text = body.decode("utf-8")
+            self.encoding = "utf-8"
+        except UnicodeDecodeError:
+            self.text = body.decode("latin-1")
+            self.encoding = "latin-1"
+        self._line_starts: list[int] | None = None
+
+    # -- reading ---------------------------------------------------------
+    @classmethod
+    def read(cls, path: str | os.PathLike) -> "Document":
+        p = Path(path)
+        try:
+            raw = p.read_bytes()
+        except FileNotFoundError:
+            raise UcsioError("no such file", file=str(path)) from None
+        except IsADirectoryError:
+            raise UcsioError("is a directory, not a controller file", file=str(path)) from None
+        except OSError as exc:
+            raise UcsioError(f"cannot read: {exc.strerror}", file=str(path)) from None
+        return cls(raw, path)
+
+    # -- positions -------------------------------------------------------
+    @property
+    def line_starts(self) -> list[int]:
+        if self._line_starts is None:
+            starts = [0]
+            text = self.text
+            find = text.find
+            i = find("\n")
+            while i != -1:
+                starts.append(i + 1)
+                i = find("\n", i + 1)
+            self._line_starts = starts
+        return self._line_starts
+
+    def line_col(self, offset: int) -> tuple[int, int]:
+        """1-based line and column of a character offset."""
+        starts = self.line_starts
+        i = bisect.bisect_right(starts, offset) - 1
+        return i + 1, offset - starts[i] + 1
+
+    def line_of(self, offset: int) -> int:
+        return self.line_col(offset)[0]
+
+    def error(self, message: str, offset: int | None = None) -> UcsioError:
+        if offset is None:
+            return UcsioError(message, file=self.path)
+        line, col = self.line_col(offset)
+        return UcsioError(message, file=self.path, line=line, col=col)
+
+    def slice(self, span: Span) -> str:
+        return self.text[span.start:span.end]
+
+    # -- writing ---------------------------------------------------------
+    def encode(self, text: str) -> bytes:
+        """Encode text the way this file is encoded (same codec, same BOM)."""
+        try:
+            body = text.encode(self.encoding)
+        except UnicodeEncodeError as exc:
+            raise UcsioError(f"cannot write {text[exc.start:exc.end]!r} in {self.encoding}",
+                             file=self.path) from None
+        return BOM + body if self.bom else body
+
+    def to_bytes(self) -> bytes:
+        return self.encode(self.text)
+
+    def apply(self, edits: list[Edit]) -> str:
+        """The text with every edit applied; edits must not overlap."""
+        out: list[str] = []
+        pos = 0
+        for e in sorted(edits, key=lambda e: e.span.start):
+            if e.span.start < pos:
+                raise ValueError("overlapping edits")
+            out.append(self.text[pos:e.span.start])
+            out.append(e.text)
+            pos = e.span.end
+        out.append(self.text[pos:])
+        return "".join(out)
+
+    def edited_bytes(self, edits: list[Edit]) -> bytes:
+        return self.encode(self.apply(edits))
+
+    def newline(self) -> str:
+        """The line ending this file mostly uses (for the rare inserted line)."""
+        crlf = self.text.count("\r\n")
+        return "\r\n" if crlf * 2 > self.text.count("\n") else "\n"
+
+
+def looks_binary(raw: bytes, limit: int = 4096) -> bool:
+    """Encrypted RAPID modules and other binaries: NUL or control bytes early on."""
+    head = raw[:limit]
+    if head.startswith(BOM):
+        head = head[len(BOM):]
+    if b"\x00" in head:
+        return True
+    bad = sum(1 for b in head if b < 32 and b not in (9, 10, 12, 13))
+    return bad > 0

@@ -1,0 +1,37 @@
+"""One error type for everything a user can get wrong.
+
+The CLI prints ``str(error)`` as one line on stderr and exits 2, so the message
+always leads with ``file:line:col`` when a position is known.
+"""
+from __future__ import annotations
+
+
+class UcsioError(Exception):
+    """Bad input or usage: exit status 2, nothing written."""
+
+    exit_code = 2
+
+    def __init__(self, message: str, file: str | None = None,
+                 line: int | None = None, col: int | None = None):
+        super().__init__(message)
+        self.message = message
+        self.file = file
+        self.line = line
+        self.col = col
+
+    def __str__(self) -> str:
+        where = ""
+        if self.file is not None:
+            where = str(self.file)
+            if self.line is not None:
+                where += f":{self.line}"
+                if self.col is not None:
+                    where += f":{self.col}"
+            where += ": "
+        return f"{where}{self.message}"
+
+
+class GateFailed(Exception):
+    """A check did not pass (exit status 1): over tolerance, rejected, lint."""
+
+    exit_code = 1

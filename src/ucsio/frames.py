@@ -1,0 +1,113 @@
+"""Frames: what ucsio reads from, compares and writes into controller files.
+
+A Frame is a pose (translation in mm, rotation) with a name, the file and line
+it came from, what it is relative to, and the spans of the text that hold its
+numbers, so the patcher can replace exactly those and nothing else.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from . import rotations as rot
+from .document import Document, Span
+
+
+@dataclass(frozen=True)
+class Pose:
+    """p_parent = R p_frame + t. ``q`` is canonical (w >= 0); ``abc`` is
+    KUKA's A, B, C as written where the source gave them, else derived."""
+
+    x: float
+    y: float
+    z: float
+    q: rot.Quat
+    abc: tuple[float, float, float]
+
+    @classmethod
+    def from_quat(cls, x, y, z, q) -> "Pose":
+        qc = rot.quat_canonical(tuple(float(v) for v in q))
+        return cls(float(x), float(y), float(z), qc, rot.quat_to_abc(qc))
+
+    @classmethod
+    def from_abc(cls, x, y, z, a, b, c) -> "Pose":
+        abc = (float(a), float(b), float(c))
+        return cls(float(x), float(y), float(z), rot.abc_to_quat(*abc), abc)
+
+    @classmethod
+    def from_matrix(cls, m, t) -> "Pose":
+        q = rot.matrix_to_quat(m)
+        return cls(float(t[0]), float(t[1]), float(t[2]), q, rot.quat_to_abc(q))
+
+    @property
+    def t(self) -> tuple[float, float, float]:
+        return (self.x, self.y, self.z)
+
+    @property
+    def matrix(self) -> rot.Matrix:
+        return rot.quat_to_matrix(self.q)
+
+    @property
+    def wpr(self) -> tuple[float, float, float]:
+        a, b, c = self.abc
+        return (c, b, a)
+
+    def compose(self, other: "Pose") -> "Pose":
+        """self * other: other expressed in self's parent."""
+        m = self.matrix
+        t = rot.matvec(m, other.t)
+        q = rot.quat_multiply(self.q, other.q)
+        qc = rot.quat_canonical(q)
+        return Pose(self.x + t[0], self.y + t[1], self.z + t[2], qc, rot.quat_to_abc(qc))
+
+    def apply(self, p) -> tuple[float, float, float]:
+        v = rot.matvec(self.matrix, p)
+        return (v[0] + self.x, v[1] + self.y, v[2] + self.z)
+
+    def as_dict(self) -> dict[str, Any]:
+        a, b, c = self.abc
+        return {"x": self.x, "y": self.y, "z": self.z, "a": a, "b": b, "c": c,
+                "q": list(self.q)}
+
+
+@dataclass(frozen=True)
+class Number:
+    """One numeric component as written: its span (sign included) and text."""
+
+    span: Span
+    text: str
+    value: float
+
+
+@dataclass
+class Frame:
+    name: str                 # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]'
+    vendor: str               # 'abb' | 'kuka'
+    type: str                 # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA', 'FRAME'
+    pose: Pose | None         # None where the file gives no (complete) value
+    file: str
+    line: int
+    reference: str = "world"  # 'world', 'flange', 'uframe', 'wrist', 'machine', ...
+    label: str | None = None  # KUKA BASE_NAME / TOOL_NAME
+    # component name ('x','y','z','q1'..'q4' or 'a','b','c') -> Number in the document
+    numbers: dict[str, Number] = field(default_factory=dict)
+    info: dict[str, Any] = field(default_factory=dict)   # robhold, ufprog, ufmec, load, storage, ...
+    document: Document | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def names(self) -> list[str]:
+        return [self.name] + ([self.label] if self.label else [])
+
+    def as_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"name": self.name, "file": self.file, "line": self.line,
+                             "vendor": self.vendor, "type": self.type,
+                             "reference": self.reference}
+        if self.pose is not None:
+            d.update(self.pose.as_dict())
+        else:
+            d.update({k: None for k in ("x", "y", "z", "a", "b", "c", "q")})
+        if self.label is not None:
+            d["label"] = self.label
+        for k, v in self.info.items():
+            d[k] = v
+        return d
