@@ -1,0 +1,34 @@
+"""List every frame in controller files: ABB wobjdata (uframe and NAME.oframe),
+tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data."""
+from __future__ import annotations
+
+from ..output import emit_json, fmt, table
+
+
+def add_arguments(p) -> None:
+    p.add_argument("files", nargs="+", metavar="FILE", help="RAPID module or KRL .dat file")
+
+
+def run(args) -> int:
+    from ..controller import load
+
+    cells = [load(f) for f in args.files]  # parse all first: bad input writes nothing
+    frames = [fr for c in cells for fr in c.frames]
+    if args.json:
+        emit_json({"frames": [f.as_dict() for f in frames]})
+        return 0
+    rows = []
+    for f in frames:
+        p = f.pose
+        if p is None:
+            nums = ["-"] * 6 + ["-"]
+        else:
+            nums = [fmt(v) for v in (p.x, p.y, p.z)] + [fmt(v, 4) for v in p.abc] + \
+                   ["[" + ", ".join(f"{v:.6f}" for v in p.q) + "]"]
+        rows.append([f.name, f.type, f.label or "", f.reference, *nums, f"{f.file}:{f.line}"])
+    if rows:
+        print(table(["name", "type", "label", "ref", "x", "y", "z", "a", "b", "c", "q", "at"],
+                    rows, right={4, 5, 6, 7, 8, 9}))
+    else:
+        print("no frames")
+    return 0

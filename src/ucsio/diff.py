@@ -1,0 +1,42 @@
+"""Differences between frames: simulated vs measured, and old vs new files.
+
+Definitions are SPEC's: delta = measured - simulated; da, db, dc wrapped to
+(-180, 180]; ``angle`` the single rotation between the orientations; ``dist``
+|t_measured - t_simulated|; ``dt_mean`` (|dx| + |dy| + |dz|) / 3; groups by
+dt_mean (1 below 10 mm, 2 below 25, 3 below 50, 4 below 100, 5 from 100 on);
+a frame passes when dt_mean is below the tolerance.
+"""
+from __future__ import annotations
+
+import math
+
+from .frames import Pose
+from .rotations import quat_angle, wrap180
+
+DEFAULT_TOLERANCE = 100.0
+GROUP_BOUNDS = (10.0, 25.0, 50.0, 100.0)   # mm; group k is below GROUP_BOUNDS[k-1]
+
+
+def group_of(dt_mean: float) -> int:
+    for k, bound in enumerate(GROUP_BOUNDS, 1):
+        if dt_mean < bound:
+            return k
+    return len(GROUP_BOUNDS) + 1
+
+
+def frame_delta(simulated: Pose, measured: Pose, tolerance: float = DEFAULT_TOLERANCE) -> dict:
+    dx, dy, dz = measured.x - simulated.x, measured.y - simulated.y, measured.z - simulated.z
+    da, db, dc = (wrap180(m - s) for m, s in zip(measured.abc, simulated.abc))
+    dt_mean = (abs(dx) + abs(dy) + abs(dz)) / 3.0
+    return {
+        "simulated": simulated.as_dict(),
+        "measured": measured.as_dict(),
+        "dx": dx, "dy": dy, "dz": dz,
+        "da": da, "db": db, "dc": dc,
+        "angle": quat_angle(simulated.q, measured.q),
+        "dist": math.sqrt(dx * dx + dy * dy + dz * dz),
+        "dt_mean": dt_mean,
+        "group": group_of(dt_mean),
+        "pass": dt_mean < tolerance,
+        "tolerance": tolerance,
+    }

@@ -1,0 +1,416 @@
+"""ABB RAPID: text -> frames, through grammars/rapid.lark.
+
+Two ways through the same grammar:
+
+- ``full=True`` (``ucsio check``): Lark parses every byte of the file.
+- the fast path (``ucsio frames``, ``diff``, ``patch``): an outline scanner
+  (one regular expression, the same lexical rules as the grammar) walks the
+  module's top-level items: comments, routines, records, declarations. Only
+  the declarations of frame types are kept; every other character is replaced
+  by a space, and Lark parses that masked text in one call. Offsets are those
+  of the original file, so every span points into the real document. A module
+  with 20,000 robtargets thus costs one regex pass, not 20,000 Lark parses.
+
+Both paths give the same frames (tests/test_rapid.py checks it on the corpus).
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from .controller import ControllerFile
+from .document import Document, Span
+from .frames import Frame, Number, Pose
+
+FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
+IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
+NORM_TOLERANCE = 1e-5   # |sum q^2 - 1| above this is "not normalised" (NOrient)
+
+# -- the outline scanner -------------------------------------------------------
+# Strings and comments are matched before anything can end inside them.
+_STR = r'"[^"\r\n]*+"'
+_BODY = r'(?:[^"!eE]++|' + _STR + r'|![^\r\n]*+|\B[eE]|[eE](?!ND{end}\b))*+END{end}\b'
+_OUTLINE = re.compile(
+    r"(?P<ws>\s+)"
+    r"|(?P<comment>![^\r\n]*)"
+    r"|(?P<header>%%%[\s\S]*?%%%)"
+    r"|(?P<module>MODULE\b[ \t]*\w*[ \t]*(?:\([^)\r\n]*\))?)"
+    r"|(?P<endmodule>ENDMODULE\b)"
+    r"|(?P<routine>(?:LOCAL\s+)?(?:PROC|FUNC|TRAP)\b" + _BODY.format(end="(?:PROC|FUNC|TRAP)") + ")"
+    r"|(?P<record>(?:LOCAL\s+)?RECORD\b" + _BODY.format(end="RECORD") + ")"
+    r"|(?P<alias>ALIAS\b[^;]*;)"
+    r"|(?P<decl>(?:(?:LOCAL|TASK)\s+)?(?:PERS|CONST|VAR)\s+(?P<type>\w+)"
+    r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;)",
+    re.IGNORECASE,
+)
+_STRINGS = re.compile(r'"[^"\r\n]*"')
+
+
+@dataclass(frozen=True)
+class Region:
+    kind: str
+    span: Span
+
+
+def outline(doc: Document) -> list[Region]:
+    """Top-level items of every module, in order, covering the text exactly.
+
+    Raises a positioned error for anything that is not RAPID at this level:
+    text outside MODULE ... ENDMODULE, an unterminated declaration or
+    routine, unbalanced brackets in a declaration, a missing ENDMODULE.
+    """
+    text = doc.text
+    regions: list[Region] = []
+    append = regions.append
+    pos = 0
+    in_module = False
+    module_start = 0
+    seen_module = False
+    for m in _OUTLINE.finditer(text):
+        start = m.start()
+        if start != pos:
+            break
+        kind = m.lastgroup
+        pos = m.end()
+        if kind == "ws" or kind == "comment":
+            continue
+        if kind == "decl":
+            if not in_module:
+                raise doc.error("declaration outside MODULE ... ENDMODULE", start)
+            chunk = m.group()
+            if '"' in chunk:
+                chunk = _STRINGS.sub("", chunk)
+            if chunk.count("[") != chunk.count("]"):
+                raise doc.error("unbalanced [ ] in declaration", start)
+            if m.group("type").casefold() in FRAME_TYPES:
+                append(Region("frame_decl", Span(start, pos)))
+            continue
+        if kind == "module":
+            if in_module:
+                raise doc.error("MODULE inside a module (ENDMODULE missing above)", start)
+            in_module = seen_module = True
+            module_start = start
+            append(Region("module", Span(start, pos)))
+        elif kind == "endmodule":
+            if not in_module:
+                raise doc.error("ENDMODULE without MODULE", start)
+            in_module = False
+            append(Region("endmodule", Span(start, pos)))
+        elif kind == "header":
+            if seen_module or regions:
+                raise doc.error("%%% header after the start of the file", start)
+            append(Region("header", Span(start, pos)))
+        elif not in_module:
+            raise doc.error(f"{kind} outside MODULE ... ENDMODULE", start)
+    if pos != len(text):
+        raise doc.error(_explain(text, pos), pos)
+    if in_module:
+        raise doc.error("module is not closed: ENDMODULE missing at end of file", len(text)) \
+            if module_start >= 0 else None
+    if not seen_module:
+        raise doc.error("no MODULE in file", 0)
+    return regions
+
+
+def _explain(text: str, pos: int) -> str:
+    rest = text[pos:pos + 40]
+    word = re.match(r"\w+", rest)
+    head = rest.split("\n", 1)[0].strip()
+    if word and word.group().upper() in ("PERS", "CONST", "VAR", "LOCAL", "TASK"):
+        return "declaration not terminated by ';'"
+    if word and word.group().upper() in ("PROC", "FUNC", "TRAP", "RECORD"):
+        return f"{word.group()} without its END{word.group().upper()}"
+    if rest.startswith('"'):
+        return "string not closed on its line"
+    return f"unexpected text {head[:30]!r}"
+
+
+def masked_text(doc: Document, regions: list[Region]) -> str:
+    """The text with everything but module brackets and frame declarations
+    blanked to spaces: same length, so Lark's offsets are the file's."""
+    text = doc.text
+    out: list[str] = []
+    pos = 0
+    for r in regions:
+        s, e = r.span.start, r.span.end
+        if s > pos:
+            out.append(" " * (s - pos))
+        out.append(text[s:e])
+        pos = e
+    if pos < len(text):
+        out.append(" " * (len(text) - pos))
+    return "".join(out)
+
+
+# -- Lark -----------------------------------------------------------------------
+def _parser():
+    from . import grammar
+    return grammar.parser("rapid", ("file", "data_decl"))
+
+
+def parse_tree(doc: Document, source: str):
+    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+    try:
+        return _parser().parse(source, start="file")
+    except UnexpectedEOF:
+        raise doc.error("unexpected end of file", len(doc.text)) from None
+    except UnexpectedToken as exc:
+        tok = exc.token
+        pos = tok.start_pos if tok.start_pos is not None else len(doc.text)
+        if tok.type == "$END":
+            raise doc.error("unexpected end of file", len(doc.text)) from None
+        want = sorted(exc.accepts or exc.expected)
+        hint = f"; expected {_nice(want)}" if want else ""
+        raise doc.error(f"unexpected {str(tok)[:30]!r}{hint}", pos) from None
+    except UnexpectedCharacters as exc:
+        raise doc.error(f"unexpected character {source[exc.pos_in_stream]!r}",
+                        exc.pos_in_stream) from None
+    except UnexpectedInput as exc:  # pragma: no cover - other Lark errors
+        raise doc.error(str(exc).splitlines()[0], getattr(exc, "pos_in_stream", 0)) from None
+
+
+_PUNCT = {"SEMICOLON": "';'", "COMMA": "','", "RSQB": "']'", "LSQB": "'['", "RBRACE": "'}'",
+          "RPAR": "')'", "__ANON_0": "':='", "NUMBER": "a number", "NAME": "a name"}
+
+
+def _nice(names: list[str]) -> str:
+    shown = [_PUNCT.get(n, n.lower()) for n in names[:6]]
+    return " or ".join(shown) + (" ..." if len(names) > 6 else "")
+
+
+# -- declarations -> frames ---------------------------------------------------------
+@dataclass
+class Decl:
+    scope: str | None
+    storage: str
+    type: str
+    name: str
+    dims: list | None
+    value: object | None     # converted value tree (see _value)
+    start: int
+    end: int
+    module: str
+
+
+class _Expr:
+    """A value that is not a literal (a name, a call, arithmetic)."""
+
+    def __init__(self, start: int, end: int):
+        self.start, self.end = start, end
+
+
+def _value(node):
+    """Lark subtree -> Number | bool | str | list | _Expr."""
+    from lark import Token, Tree
+
+    if isinstance(node, Token):
+        return _Expr(node.start_pos, node.end_pos)
+    kind = node.data
+    if kind == "number":
+        tok = node.children[0]
+        return Number(Span(tok.start_pos, tok.end_pos), str(tok), _num(str(tok)))
+    if kind == "neg" or kind == "pos":
+        inner = _value(node.children[0])
+        if isinstance(inner, Number):
+            start = node.meta.start_pos
+            sign = -1.0 if kind == "neg" else 1.0
+            return Number(Span(start, inner.span.end), None, sign * inner.value)  # type: ignore[arg-type]
+        return _Expr(node.meta.start_pos, node.meta.end_pos)
+    if kind == "bool":
+        return str(node.children[0]).upper() == "TRUE"
+    if kind == "string":
+        raw = str(node.children[0])[1:-1]
+        return raw.replace('""', '"')
+    if kind == "aggregate":
+        return [_value(c) for c in node.children if isinstance(c, Tree) or c.type != "COMMA"]
+    meta = node.meta
+    return _Expr(getattr(meta, "start_pos", 0), getattr(meta, "end_pos", 0))
+
+
+def _num(text: str) -> float:
+    t = text.lower()
+    if t.startswith(("0x", "0o", "0b", "0d")) and len(t) > 2 and not t.startswith("0d."):
+        base = {"x": 16, "o": 8, "b": 2, "d": 10}[t[1]]
+        return float(int(t[2:], base))
+    return float(text)
+
+
+def declarations(doc: Document, tree) -> list[Decl]:
+    from lark import Tree
+
+    out: list[Decl] = []
+    for module in tree.children:
+        if not isinstance(module, Tree) or module.data != "module":
+            continue
+        module_name = str(module.children[0])
+        for item in module.children[1:]:
+            if not isinstance(item, Tree) or item.data != "data_decl":
+                continue
+            ch = item.children
+            i = 0
+            scope = None
+            if isinstance(ch[0], Tree) and ch[0].data == "scope":
+                scope = str(ch[0].children[0]).upper()
+                i = 1
+            storage = str(ch[i].children[0]).upper()
+            type_name, name = str(ch[i + 1]), str(ch[i + 2])
+            rest = ch[i + 3:]
+            dims = None
+            value = None
+            for r in rest:
+                if isinstance(r, Tree) and r.data == "dims":
+                    dims = [_value(d) for d in r.children]
+                else:
+                    value = _value(r)
+            out.append(Decl(scope, storage, type_name, name, dims, value,
+                            item.meta.start_pos, item.meta.end_pos, module_name))
+    return out
+
+
+def _nums(v, n: int) -> list[Number] | None:
+    if isinstance(v, list) and len(v) == n and all(isinstance(x, Number) for x in v):
+        return v
+    return None
+
+
+def _pose(v) -> tuple[dict[str, Number], tuple] | None:
+    """[[x,y,z],[q1,q2,q3,q4]] -> ({'x': Number, ...}, (x,y,z,q))."""
+    if not (isinstance(v, list) and len(v) == 2):
+        return None
+    trans, rot = _nums(v[0], 3), _nums(v[1], 4)
+    if trans is None or rot is None:
+        return None
+    numbers = dict(zip(("x", "y", "z", "q1", "q2", "q3", "q4"), trans + rot))
+    return numbers, (tuple(n.value for n in trans), tuple(n.value for n in rot))
+
+
+def _elements(value, dims: list | None, name: str):
+    """Yield (display name, element value) for scalars and arrays."""
+    if not dims:
+        yield name, value
+        return
+
+    def walk(v, depth, index):
+        if depth == len(dims):
+            yield f"{name}{{{','.join(map(str, index))}}}", v
+            return
+        if not isinstance(v, list):
+            return
+        for k, item in enumerate(v, 1):
+            yield from walk(item, depth + 1, index + [k])
+
+    yield from walk(value, 0, [])
+
+
+def _loaddata(v) -> dict | None:
+    if not (isinstance(v, list) and len(v) == 6):
+        return None
+    mass, cog, aom, ix, iy, iz = v
+    cog_n, aom_n = _nums(cog, 3), _nums(aom, 4)
+    if not all(isinstance(x, Number) for x in (mass, ix, iy, iz)) or cog_n is None or aom_n is None:
+        return None
+    return {"mass": mass.value, "cog": [n.value for n in cog_n], "aom": [n.value for n in aom_n],
+            "ix": ix.value, "iy": iy.value, "iz": iz.value}
+
+
+def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_value,
+                reference: str, info: dict, at: int) -> Frame:
+    doc = cf.document
+    parsed = _pose(pose_value)
+    pose = None
+    numbers: dict[str, Number] = {}
+    if parsed is None:
+        if decl.value is not None:  # a declaration without any value is linted once, above
+            cf.lint(at, "not-literal", f"{name}: not a literal pose; listed without numbers, not patchable")
+        info = dict(info, value=None)
+    else:
+        numbers, (t, q) = parsed
+        numbers = {k: _with_text(doc, n) for k, n in numbers.items()}
+        norm2 = sum(c * c for c in q)
+        if norm2 == 0.0:
+            cf.lint(numbers["q1"].span.start, "zero-quaternion", f"{name}: orientation is all zeros")
+        else:
+            if abs(norm2 - 1.0) > NORM_TOLERANCE:
+                cf.lint(numbers["q1"].span.start, "unnormalized-quaternion",
+                        f"{name}: quaternion is not normalised (|sum q^2 - 1| = {abs(norm2 - 1):.2e})")
+            pose = Pose.from_quat(*t, q)
+    line = doc.line_of(at)
+    return Frame(name=name, vendor="abb", type=type_, pose=pose, file=doc.path, line=line,
+                 reference=reference, numbers=numbers, info=info, document=doc)
+
+
+def _with_text(doc: Document, n: Number) -> Number:
+    if n.text is None:
+        return Number(n.span, doc.slice(n.span), n.value)
+    return n
+
+
+def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
+    doc = cf.document
+    for d in decls:
+        if len(d.name) > IDENT_MAX:
+            cf.lint(d.start, "long-name", f"{d.name}: identifier longer than {IDENT_MAX} characters")
+        kind = d.type.casefold()
+        if kind not in FRAME_TYPES:
+            continue
+        storage = " ".join(x for x in (d.scope, d.storage) if x)
+        base_info = {"storage": storage, "module": d.module}
+        if d.value is None:
+            cf.lint(d.start, "no-value", f"{d.name}: declared without a value; not patchable here")
+        for name, v in _elements(d.value, d.dims, d.name):
+            at = _start_of(v, d.start)
+            if kind == "pose":
+                cf.frames.append(_make_frame(cf, d, name, "pose", v, "unknown", dict(base_info), at))
+            elif kind == "tooldata":
+                robhold = v[0] if isinstance(v, list) and len(v) == 3 and isinstance(v[0], bool) else None
+                tframe = v[1] if robhold is not None else None
+                load = _loaddata(v[2]) if robhold is not None else None
+                info = dict(base_info, robhold=robhold, load=load)
+                ref = "flange" if robhold is not False else "world"
+                cf.frames.append(_make_frame(cf, d, name, "tooldata", tframe, ref, info, at))
+                if robhold and load is not None and load["mass"] <= 0:
+                    cf.lint(at, "tool-mass", f"{name}: robot-held tool with load mass {load['mass']:g} kg (must be > 0)")
+            elif kind == "wobjdata":
+                ok = (isinstance(v, list) and len(v) == 5 and isinstance(v[0], bool)
+                      and isinstance(v[1], bool) and isinstance(v[2], str))
+                robhold, ufprog, ufmec = (v[0], v[1], v[2]) if ok else (None, None, None)
+                info = dict(base_info, robhold=robhold, ufprog=ufprog, ufmec=ufmec)
+                # uframe is in world with a robot-held tool; with a stationary
+                # tool (wobj robhold TRUE) the robot holds the work object.
+                uref = "wrist" if robhold else "world"
+                if ufprog is False:
+                    uref = f"mechanical unit {ufmec}" if ufmec else "moving"
+                    cf.lint(at, "moving-uframe",
+                            f"{name}: moving user frame (ufprog FALSE, ufmec {ufmec!r}): not patchable")
+                cf.frames.append(_make_frame(cf, d, name, "wobjdata", v[3] if ok else None, uref,
+                                             dict(info, component="uframe"), at))
+                cf.frames.append(_make_frame(cf, d, f"{name}.oframe", "wobjdata",
+                                             v[4] if ok else None, "uframe",
+                                             dict(info, component="oframe"), at))
+
+
+def _start_of(v, default: int) -> int:
+    if isinstance(v, Number):
+        return v.span.start
+    if isinstance(v, list):
+        for x in v:
+            s = _start_of(x, -1)
+            if s >= 0:
+                return s
+    if isinstance(v, _Expr):
+        return v.start
+    return default
+
+
+def parse(doc: Document, full: bool = False) -> ControllerFile:
+    cf = ControllerFile(document=doc, vendor="abb")
+    if full:
+        tree = parse_tree(doc, doc.text)
+    else:
+        regions = outline(doc)
+        tree = parse_tree(doc, masked_text(doc, regions))
+    decls = declarations(doc, tree)
+    cf.extra["declarations"] = decls
+    frames_from(cf, decls)
+    return cf
