@@ -27,12 +27,12 @@ class Pose:
     @classmethod
     def from_quat(cls, x, y, z, q) -> "Pose":
         qc = rot.quat_canonical(tuple(float(v) for v in q))
-        return cls(float(x), float(y), float(z), qc, rot.quat_to_abc(qc))
+        return cls(float(x) + 0.0, float(y) + 0.0, float(z) + 0.0, qc, rot.quat_to_abc(qc))
 
     @classmethod
     def from_abc(cls, x, y, z, a, b, c) -> "Pose":
-        abc = (float(a), float(b), float(c))
-        return cls(float(x), float(y), float(z), rot.abc_to_quat(*abc), abc)
+        abc = (float(a) + 0.0, float(b) + 0.0, float(c) + 0.0)  # + 0.0: no "-0"
+        return cls(float(x) + 0.0, float(y) + 0.0, float(z) + 0.0, rot.abc_to_quat(*abc), abc)
 
     @classmethod
     def from_matrix(cls, m, t) -> "Pose":

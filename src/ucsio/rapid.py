@@ -7,7 +7,7 @@ Two ways through the same grammar:
   (one regular expression, the same lexical rules as the grammar) walks the
   module's top-level items: comments, routines, records, declarations. Only
   the declarations of frame types are kept; every other character is replaced
-  by a space, and Lark parses that masked text in one call. Offsets are those
+  by a space, and Lark parses that in one call; positions are mapped back
   of the original file, so every span points into the real document. A module
   with 20,000 robtargets thus costs one regex pass, not 20,000 Lark parses.
 
@@ -15,6 +15,7 @@ Both paths give the same frames (tests/test_rapid.py checks it on the corpus).
 """
 from __future__ import annotations
 
+import bisect
 import re
 from dataclasses import dataclass
 
@@ -30,20 +31,32 @@ NORM_TOLERANCE = 1e-5   # |sum q^2 - 1| above this is "not normalised" (NOrient)
 # Strings and comments are matched before anything can end inside them.
 _STR = r'"[^"\r\n]*+"'
 _BODY = r'(?:[^"!eE]++|' + _STR + r'|![^\r\n]*+|\B[eE]|[eE](?!ND{end}\b))*+END{end}\b'
+_DECL_HEAD = r"(?:(?:LOCAL|TASK)\s+)?(?:PERS|CONST|VAR)\s+"
+_DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
+# Whitespace and comments are folded into the item after them: one match per
+# item keeps the Python loop short on modules with tens of thousands of targets.
 _OUTLINE = re.compile(
-    r"(?P<ws>\s+)"
-    r"|(?P<comment>![^\r\n]*)"
+    r"(?:\s++|![^\r\n]*+)*+(?:"
+    r"(?P<frame_decl>" + _DECL_HEAD + r"(?:wobjdata|tooldata|pose)\b" + _DECL_REST + ")"
+    # a run of other declarations (a path module's 20,000 robtargets) is one match
+    r"|(?P<decls>" + _DECL_HEAD + r"\w+" + _DECL_REST
+    + r"(?:(?:\s++|![^\r\n]*+)*+" + _DECL_HEAD + r"(?!(?:wobjdata|tooldata|pose)\b)\w+"
+    + _DECL_REST + r")*+)"
     r"|(?P<header>%%%[\s\S]*?%%%)"
     r"|(?P<module>MODULE\b[ \t]*\w*[ \t]*(?:\([^)\r\n]*\))?)"
     r"|(?P<endmodule>ENDMODULE\b)"
     r"|(?P<routine>(?:LOCAL\s+)?(?:PROC|FUNC|TRAP)\b" + _BODY.format(end="(?:PROC|FUNC|TRAP)") + ")"
     r"|(?P<record>(?:LOCAL\s+)?RECORD\b" + _BODY.format(end="RECORD") + ")"
     r"|(?P<alias>ALIAS\b[^;]*;)"
-    r"|(?P<decl>(?:(?:LOCAL|TASK)\s+)?(?:PERS|CONST|VAR)\s+(?P<type>\w+)"
-    r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;)",
+    r"|(?P<eof>\Z))",
     re.IGNORECASE,
 )
 _STRINGS = re.compile(r'"[^"\r\n]*"')
+_TRIVIA = re.compile(r"(?:\s++|![^\r\n]*+)*+")
+_BAD_NUMBER = re.compile(
+    r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
+    r"|\.\d*+(?:[.A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]))")
+_NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*")
 
 
 @dataclass(frozen=True)
@@ -53,43 +66,41 @@ class Region:
 
 
 def outline(doc: Document) -> list[Region]:
-    """Top-level items of every module, in order, covering the text exactly.
+    """Module brackets, header and frame declarations, in order.
 
-    Raises a positioned error for anything that is not RAPID at this level:
-    text outside MODULE ... ENDMODULE, an unterminated declaration or
-    routine, unbalanced brackets in a declaration, a missing ENDMODULE.
+    Walks every top-level item (contiguity is checked, so nothing is skipped
+    unseen) and raises a positioned error for anything that is not RAPID at
+    this level: text outside MODULE ... ENDMODULE, an unterminated
+    declaration or routine, unbalanced brackets, a bad number, a missing
+    ENDMODULE.
     """
     text = doc.text
     regions: list[Region] = []
     append = regions.append
     pos = 0
     in_module = False
-    module_start = 0
     seen_module = False
     for m in _OUTLINE.finditer(text):
-        start = m.start()
-        if start != pos:
+        if m.start() != pos:
             break
-        kind = m.lastgroup
         pos = m.end()
-        if kind == "ws" or kind == "comment":
-            continue
-        if kind == "decl":
+        kind = m.lastgroup
+        if kind == "decls" or kind == "frame_decl":
+            start = m.start(kind)
             if not in_module:
                 raise doc.error("declaration outside MODULE ... ENDMODULE", start)
-            chunk = m.group()
-            if '"' in chunk:
-                chunk = _STRINGS.sub("", chunk)
-            if chunk.count("[") != chunk.count("]"):
-                raise doc.error("unbalanced [ ] in declaration", start)
-            if m.group("type").casefold() in FRAME_TYPES:
-                append(Region("frame_decl", Span(start, pos)))
+            if not _balanced(m.group(kind)):
+                raise doc.error("unbalanced [ ] in declaration", _unbalanced_decl(text, start, pos))
+            if kind == "frame_decl":
+                append(Region(kind, Span(start, pos)))
             continue
+        if kind == "eof":
+            break
+        start = m.start(kind)
         if kind == "module":
             if in_module:
                 raise doc.error("MODULE inside a module (ENDMODULE missing above)", start)
             in_module = seen_module = True
-            module_start = start
             append(Region("module", Span(start, pos)))
         elif kind == "endmodule":
             if not in_module:
@@ -103,13 +114,70 @@ def outline(doc: Document) -> list[Region]:
         elif not in_module:
             raise doc.error(f"{kind} outside MODULE ... ENDMODULE", start)
     if pos != len(text):
-        raise doc.error(_explain(text, pos), pos)
+        item = _TRIVIA.match(text, pos).end()  # point at the item, not the blank before it
+        raise doc.error(_explain(text, item), item)
     if in_module:
-        raise doc.error("module is not closed: ENDMODULE missing at end of file", len(text)) \
-            if module_start >= 0 else None
+        raise doc.error("module is not closed: ENDMODULE missing at end of file", len(text))
     if not seen_module:
         raise doc.error("no MODULE in file", 0)
     return regions
+
+
+def _balanced(chunk: str) -> bool:
+    if '"' in chunk:
+        chunk = _STRINGS.sub("", chunk)
+    return chunk.count("[") == chunk.count("]")
+
+
+_ONE_DECL = re.compile(r"(?:\s++|![^\r\n]*+)*+(" + _DECL_HEAD + r"\w+" + _DECL_REST + ")", re.IGNORECASE)
+
+
+def _unbalanced_decl(text: str, start: int, end: int) -> int:
+    """Offset of the first unbalanced declaration in a run of them."""
+    pos = start
+    while pos < end:
+        m = _ONE_DECL.match(text, pos, end)
+        if m is None:
+            break
+        if not _balanced(m.group(1)):
+            return m.start(1)
+        pos = m.end()
+    return start
+
+
+
+def _check_numbers(doc: Document) -> None:
+    """A number run straight into a letter or a second dot ("1.2.3", "3e",
+    "12ab") is bad wherever it stands in live code. The regex only finds
+    candidates; digits inside names (p10, tool0.tframe) are skipped here.
+    This costs a pass over every digit, so only ``check`` runs it on the whole
+    file; the fast path's Lark parse checks the numbers of frame data."""
+    text = doc.text
+    for m in _BAD_NUMBER.finditer(text):
+        i = m.start()
+        while i > 0 and (text[i - 1].isdigit() or text[i - 1] == "."):
+            i -= 1
+        if i > 0 and (text[i - 1].isalnum() or text[i - 1] == "_"):
+            continue  # digits inside a name
+        if text[i] == "." and i > 0 and text[i - 1] in ")}]":
+            continue
+        if _in_string_or_comment(text, i):
+            continue
+        raise doc.error(f"bad number {_NUMBER_RUN.match(text, i).group()!r}", i)
+
+
+def _in_string_or_comment(text: str, pos: int) -> bool:
+    """Strings and comments never span lines in RAPID: scan this line only."""
+    i = text.rfind("\n", 0, pos) + 1
+    in_string = False
+    while i < pos:
+        c = text[i]
+        if c == '"':
+            in_string = not in_string
+        elif c == "!" and not in_string:
+            return True
+        i += 1
+    return in_string
 
 
 def _explain(text: str, pos: int) -> str:
@@ -125,21 +193,42 @@ def _explain(text: str, pos: int) -> str:
     return f"unexpected text {head[:30]!r}"
 
 
-def masked_text(doc: Document, regions: list[Region]) -> str:
-    """The text with everything but module brackets and frame declarations
-    blanked to spaces: same length, so Lark's offsets are the file's."""
-    text = doc.text
-    out: list[str] = []
-    pos = 0
-    for r in regions:
-        s, e = r.span.start, r.span.end
-        if s > pos:
-            out.append(" " * (s - pos))
-        out.append(text[s:e])
-        pos = e
-    if pos < len(text):
-        out.append(" " * (len(text) - pos))
-    return "".join(out)
+class Compact:
+    """Only the regions Lark must see, joined by single spaces, and the map
+    from a position in that text back to the file. Lark then reads a few
+    kilobytes instead of a module of robtargets; positions are mapped back
+    once, so every span in the tree points into the real document."""
+
+    def __init__(self, doc: Document, regions: list[Region]):
+        text = doc.text
+        parts: list[str] = []
+        self.starts: list[int] = []     # where each region starts in the compact text
+        self.origins: list[int] = []    # ... and in the file
+        n = 0
+        for r in regions:
+            self.starts.append(n)
+            self.origins.append(r.span.start)
+            parts.append(text[r.span.start:r.span.end])
+            parts.append(" ")
+            n += r.span.end - r.span.start + 1
+        self.text = "".join(parts)
+
+    def __call__(self, pos: int) -> int:
+        i = bisect.bisect_right(self.starts, pos) - 1
+        return self.origins[i] + pos - self.starts[i] if i >= 0 else pos
+
+    def remap(self, tree) -> None:
+        from lark import Token
+
+        for sub in tree.iter_subtrees():
+            meta = sub.meta
+            if not meta.empty:
+                meta.start_pos = self(meta.start_pos)
+                meta.end_pos = self(meta.end_pos)
+            for tok in sub.children:
+                if isinstance(tok, Token) and tok.start_pos is not None:
+                    tok.start_pos = self(tok.start_pos)
+                    tok.end_pos = self(tok.end_pos)
 
 
 # -- Lark -----------------------------------------------------------------------
@@ -148,7 +237,7 @@ def _parser():
     return grammar.parser("rapid", ("file", "data_decl"))
 
 
-def parse_tree(doc: Document, source: str):
+def parse_tree(doc: Document, source: str, locate=lambda pos: pos):
     from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
     try:
@@ -157,7 +246,7 @@ def parse_tree(doc: Document, source: str):
         raise doc.error("unexpected end of file", len(doc.text)) from None
     except UnexpectedToken as exc:
         tok = exc.token
-        pos = tok.start_pos if tok.start_pos is not None else len(doc.text)
+        pos = locate(tok.start_pos) if tok.start_pos is not None else len(doc.text)
         if tok.type == "$END":
             raise doc.error("unexpected end of file", len(doc.text)) from None
         want = sorted(exc.accepts or exc.expected)
@@ -165,9 +254,9 @@ def parse_tree(doc: Document, source: str):
         raise doc.error(f"unexpected {str(tok)[:30]!r}{hint}", pos) from None
     except UnexpectedCharacters as exc:
         raise doc.error(f"unexpected character {source[exc.pos_in_stream]!r}",
-                        exc.pos_in_stream) from None
+                        locate(exc.pos_in_stream)) from None
     except UnexpectedInput as exc:  # pragma: no cover - other Lark errors
-        raise doc.error(str(exc).splitlines()[0], getattr(exc, "pos_in_stream", 0)) from None
+        raise doc.error(str(exc).splitlines()[0], locate(getattr(exc, "pos_in_stream", 0))) from None
 
 
 _PUNCT = {"SEMICOLON": "';'", "COMMA": "','", "RSQB": "']'", "LSQB": "'['", "RBRACE": "'}'",
@@ -405,11 +494,18 @@ def _start_of(v, default: int) -> int:
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor="abb")
-    if full:
-        tree = parse_tree(doc, doc.text)
-    else:
-        regions = outline(doc)
-        tree = parse_tree(doc, masked_text(doc, regions))
+    regions = outline(doc)  # structure errors read best from the outline
+    try:
+        if full:
+            _check_numbers(doc)
+            tree = parse_tree(doc, doc.text)
+        else:
+            compact = Compact(doc, regions)
+            tree = parse_tree(doc, compact.text, compact)
+            compact.remap(tree)
+    except Exception:
+        _check_numbers(doc)  # "bad number '1.2.3'" says more than Lark's token error
+        raise
     decls = declarations(doc, tree)
     cf.extra["declarations"] = decls
     frames_from(cf, decls)
