@@ -57,6 +57,7 @@ _BAD_NUMBER = re.compile(
     r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
     r"|\.\d*+(?:[.A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]))")
 _NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*")
+_RADIX = re.compile(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
 
 
 @dataclass(frozen=True)
@@ -161,7 +162,7 @@ def _check_numbers(doc: Document) -> None:
             continue  # digits inside a name
         if text[i] == "." and i > 0 and text[i - 1] in ")}]":
             continue
-        if _in_string_or_comment(text, i):
+        if _RADIX.match(text, i) or _in_string_or_comment(text, i):
             continue
         raise doc.error(f"bad number {_NUMBER_RUN.match(text, i).group()!r}", i)
 
