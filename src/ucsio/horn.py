@@ -12,25 +12,25 @@ to the fixture's nominal frame, the UCS) and the same points r_r,i in the
 minimising sum_i w_i |r_r,i - R r_l,i - r_0|^2. Scale is fixed to 1: the
 laser tracker and the robot both measure in millimetres.
 
-The steps follow the paper (section numbers are Horn's):
+The steps follow the paper, with its names:
 
-- 2.C/2.D: the translation is the difference of the weighted centroids once
-  the rotation is known; work with coordinates relative to the centroids,
-  r'_l,i and r'_r,i.
-- 4.A: the sums of products S_xx = sum w_i x'_l,i x'_r,i, S_xy = sum w_i
-  x'_l,i y'_r,i, ... (the cross-covariance matrix M).
-- 4.A: the symmetric 4x4 matrix N built from them; its trace is zero.
-- 4.B: the unit quaternion q = (q0, qx, qy, qz) that maximises q^T N q is the
-  eigenvector of N's most positive eigenvalue.
-- 3.E/4.C: R from q; r_0 = r̄_r - R r̄_l.
+- the translation: once the rotation is known, r_0 is the difference of the
+  (weighted) centroids, r_0 = r̄_r - R r̄_l; so work with coordinates relative
+  to the centroids, r'_l,i and r'_r,i;
+- the sums of products S_xx = sum w_i x'_l,i x'_r,i, S_xy = sum w_i x'_l,i
+  y'_r,i, ... (the entries of M = sum w_i r'_l,i r'_r,i^T);
+- the symmetric 4x4 matrix N built from them (its trace is zero);
+- the unit quaternion q = (q0, qx, qy, qz) that maximises q^T N q is the
+  eigenvector of N's most positive eigenvalue;
+- R from q, then r_0.
 
 Everything is vectorised over a leading batch axis: inputs are (B, n, 3) and
 one ``numpy.linalg.eigh`` call diagonalises the (B, 4, 4) stack. A single
 solve is a batch of one (``absolute_orientation``), which raises
 ``UcsioError`` when the points cannot determine the frame.
 
-Degeneracy (Horn 4.D discusses the coplanar case, which is fine; the
-collinear case is not): the rotation about a line through collinear points is
+Degeneracy (coplanar points are fine, as the paper shows; collinear ones are
+not): the rotation about a line through collinear points is
 undetermined, and then N's two largest eigenvalues coincide. We check the
 laser points' scatter directly (principal RMS spreads s1 >= s2 >= s3 about
 the weighted centroid) and, as a numerical safety net, the relative gap
@@ -113,7 +113,7 @@ class HornFit:
 
 
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
-    """(..., 4) unit quaternions (w, x, y, z) -> (..., 3, 3) rotation matrices (Horn 3.E)."""
+    """(..., 4) unit quaternions (w, x, y, z) -> (..., 3, 3) rotation matrices."""
     q0, qx, qy, qz = np.moveaxis(np.asarray(q, dtype=float), -1, 0)
     R = np.empty(q0.shape + (3, 3))
     R[..., 0, 0] = q0 * q0 + qx * qx - qy * qy - qz * qz
@@ -141,21 +141,22 @@ def horn_batch(r_l, r_r, w=None) -> HornBatch:
     w = np.ones((B, n)) if w is None else np.broadcast_to(np.asarray(w, dtype=float), (B, n))
     n_eff = np.count_nonzero(w > 0, axis=1)
     W = w.sum(axis=1)                                   # (B,)
-    W_safe = np.where(W > 0, W, 1.0)
+    W_safe = np.where(W > 0, W, 1.0)[:, None, None]
 
-    # 2.C: weighted centroids, and coordinates relative to them.
-    rbar_l = np.einsum("bi,bij->bj", w, r_l) / W_safe[:, None]
-    rbar_r = np.einsum("bi,bij->bj", w, r_r) / W_safe[:, None]
-    rp_l = r_l - rbar_l[:, None, :]
-    rp_r = r_r - rbar_r[:, None, :]
+    # Weighted centroids, and coordinates relative to them.
+    rbar_l = (w[:, None, :] @ r_l) / W_safe             # (B, 1, 3)
+    rbar_r = (w[:, None, :] @ r_r) / W_safe
+    rp_l = r_l - rbar_l
+    rp_r = r_r - rbar_r
+    w_rp_l = rp_l * w[:, :, None]
 
-    # 4.A: M = sum_i w_i r'_l,i r'_r,i^T, whose entries are S_xx, S_xy, ...
-    M = np.einsum("bi,bij,bik->bjk", w, rp_l, rp_r)
+    # M = sum_i w_i r'_l,i r'_r,i^T, whose entries are S_xx, S_xy, ...
+    M = w_rp_l.transpose(0, 2, 1) @ rp_r
     S_xx, S_xy, S_xz = M[:, 0, 0], M[:, 0, 1], M[:, 0, 2]
     S_yx, S_yy, S_yz = M[:, 1, 0], M[:, 1, 1], M[:, 1, 2]
     S_zx, S_zy, S_zz = M[:, 2, 0], M[:, 2, 1], M[:, 2, 2]
 
-    # 4.A: the symmetric 4x4 matrix N.
+    # The symmetric 4x4 matrix N.
     N = np.empty((B, 4, 4))
     N[:, 0, 0] = S_xx + S_yy + S_zz
     N[:, 0, 1] = N[:, 1, 0] = S_yz - S_zy
@@ -168,20 +169,20 @@ def horn_batch(r_l, r_r, w=None) -> HornBatch:
     N[:, 2, 3] = N[:, 3, 2] = S_yz + S_zy
     N[:, 3, 3] = -S_xx - S_yy + S_zz
 
-    # 4.B: the unit quaternion maximising q^T N q is the eigenvector of the
+    # The unit quaternion maximising q^T N q is the eigenvector of the
     # most positive eigenvalue (eigh sorts ascending: the last column).
     eigenvalues, eigenvectors = np.linalg.eigh(N)
     q = eigenvectors[:, :, 3]
     q = np.where(q[:, :1] < 0, -q, q)                   # q and -q: same rotation; w >= 0
     q /= np.linalg.norm(q, axis=1, keepdims=True)
 
-    # 3.E / 4.C: rotation, then translation r_0 = r̄_r - R r̄_l.
+    # Rotation from the quaternion, then translation r_0 = r̄_r - R r̄_l.
     R = quat_to_matrix(q)
-    t = rbar_r - np.einsum("bij,bj->bi", R, rbar_l)
+    t = (rbar_r - rbar_l @ R.transpose(0, 2, 1))[:, 0, :]
 
     # Degeneracy: principal spreads of the laser points about their centroid.
-    C = np.einsum("bi,bij,bik->bjk", w, rp_l, rp_l) / W_safe[:, None, None]
-    spread = np.sqrt(np.clip(np.linalg.eigvalsh(C)[:, ::-1], 0.0, None))   # s1 >= s2 >= s3
+    C = (w_rp_l.transpose(0, 2, 1) @ rp_l) / W_safe
+    spread = np.sqrt(_sym3_eigvals_desc(C))                # s1 >= s2 >= s3
     gap = (eigenvalues[:, 3] - eigenvalues[:, 2]) / np.maximum(
         np.abs(eigenvalues[:, 3]) + np.abs(eigenvalues[:, 0]), np.finfo(float).tiny)
 
@@ -192,6 +193,36 @@ def horn_batch(r_l, r_r, w=None) -> HornBatch:
     status[spread[:, 0] < COINCIDENT_SPREAD] = COINCIDENT
     status[n_eff < 3] = TOO_FEW_POINTS
     return HornBatch(q=q, R=R, t=t, eigenvalues=eigenvalues, spread=spread, status=status)
+
+
+def _sym3_eigvals_desc(C: np.ndarray) -> np.ndarray:
+    """Eigenvalues (descending, clipped at 0) of positive semi-definite
+    symmetric 3x3 matrices (B, 3, 3), in closed form (cheaper than a second
+    LAPACK call per item). The largest comes from the trigonometric solution
+    of the characteristic cubic, which is well conditioned for it; the other
+    two from their sum (trace - l1) and product (det / l1), so a thin scatter
+    (l2, l3 << l1) keeps its small eigenvalues to ~sqrt(eps) * l1 at worst,
+    far below the collinearity ratio checked against them."""
+    a, b, c = C[:, 0, 0], C[:, 1, 1], C[:, 2, 2]
+    d, e, f = C[:, 0, 1], C[:, 1, 2], C[:, 0, 2]
+    tr = a + b + c
+    m = tr / 3.0
+    p1 = d * d + e * e + f * f
+    p2 = (a - m) ** 2 + (b - m) ** 2 + (c - m) ** 2 + 2.0 * p1
+    p = np.sqrt(p2 / 6.0)
+    p_safe = np.where(p > 0, p, 1.0)
+    A, Bm, Cm = (a - m) / p_safe, (b - m) / p_safe, (c - m) / p_safe
+    D, E, F = d / p_safe, e / p_safe, f / p_safe
+    half_det = 0.5 * (A * (Bm * Cm - E * E) - D * (D * Cm - E * F) + F * (D * E - Bm * F))
+    phi = np.arccos(np.clip(half_det, -1.0, 1.0)) / 3.0
+    l1 = np.where(p > 0, m + 2.0 * p * np.cos(phi), m)
+    det = a * (b * c - e * e) - d * (d * c - e * f) + f * (d * e - b * f)
+    rest = np.clip(tr - l1, 0.0, None)                       # l2 + l3
+    prod = np.clip(np.where(l1 > 0, det / np.where(l1 > 0, l1, 1.0), 0.0), 0.0, None)
+    root = np.sqrt(np.clip(rest * rest - 4.0 * prod, 0.0, None))
+    l2 = 0.5 * (rest + root)
+    l3 = np.minimum(np.where(l2 > 0, prod / np.where(l2 > 0, l2, 1.0), 0.0), l2)
+    return np.clip(np.stack([l1, l2, l3], axis=-1), 0.0, None)
 
 
 def absolute_orientation(r_l, r_r, w=None) -> HornFit:

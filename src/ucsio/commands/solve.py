@@ -1,0 +1,172 @@
+"""Fit the measured UCS to laser/robot point pairs (Horn's closed form),
+with leave-one-out outlier exclusion. Exit 0 accepted, 1 rejected (too few
+points left), 2 bad input."""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import tempfile
+
+from ..errors import UcsioError
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    # Let ``--tcp -20.67,89.73,33.44`` through: argparse would take a value
+    # starting with '-' for an option unless it looks like a negative number,
+    # and its idea of one has no commas. (Private attribute; guarded.)
+    if hasattr(p, "_negative_number_matcher"):
+        p._negative_number_matcher = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
+    p.add_argument("measurement", metavar="MEAS.csv", help="measurement file (see SPEC: Measurement files)")
+    src = p.add_mutually_exclusive_group()
+    src.add_argument("--tcp", metavar="X,Y,Z", default=None,
+                     help="reflector position in flange coordinates, mm (default 0,0,0)")
+    src.add_argument("--tool", metavar="FILE:NAME", default=None,
+                     help="take the TCP from a robot-held tool in a controller file")
+    p.add_argument("--threshold", type=float, default=1.5, metavar="MM",
+                   help="leave-one-out residual above which a point is excluded (default 1.5)")
+    p.add_argument("--min-points", type=int, default=6, metavar="N",
+                   help="fewer used points than this rejects the dataset (default 6)")
+    p.add_argument("--exclude", action="append", default=[], metavar="NAME",
+                   help="drop this point by hand (repeatable)")
+    p.add_argument("--no-exclusion", action="store_true", help="keep every point")
+    p.add_argument("--uncertainty", type=int, default=0, metavar="N",
+                   help="Monte Carlo uncertainty from N perturbed copies")
+    p.add_argument("--sigma-laser", type=float, default=0.015, metavar="MM",
+                   help="laser noise per axis for --uncertainty (default 0.015)")
+    p.add_argument("--sigma-robot", type=float, default=0.05, metavar="MM",
+                   help="robot noise per axis for --uncertainty (default 0.05)")
+    p.add_argument("--seed", type=int, default=0, help="random seed for --uncertainty (default 0)")
+    p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
+                   help="write the result as JSON (atomically)")
+
+
+def parse_tcp(text: str) -> tuple[float, float, float]:
+    import math
+    parts = [s.strip() for s in text.replace(";", ",").split(",")]
+    try:
+        vals = tuple(float(s) for s in parts)
+    except ValueError:
+        raise UcsioError(f"--tcp {text!r}: expected three numbers X,Y,Z (mm)") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise UcsioError(f"--tcp {text!r}: expected three finite numbers X,Y,Z (mm)")
+    return vals  # type: ignore[return-value]
+
+
+def tool_tcp(spec: str) -> tuple[float, float, float]:
+    """``FILE:NAME`` -> the translation of a robot-held tool (split at the
+    last ':', so ``C:\\cell\\x.mod:tool1`` works)."""
+    file, sep, name = spec.rpartition(":")
+    if not sep or not file or not name:
+        raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
+    from ..controller import load
+    frame = load(file).frame(name)
+    if frame.info.get("robhold") is False or frame.reference != "flange":
+        raise UcsioError(f"--tool: {frame.name} is not a robot-held tool (reference "
+                         f"{frame.reference!r}); the TCP must be given in flange coordinates",
+                         file=frame.file, line=frame.line)
+    if frame.pose is None:
+        raise UcsioError(f"--tool: {frame.name} has no complete value", file=frame.file,
+                         line=frame.line)
+    return frame.pose.t
+
+
+def write_atomic(path: str, text: str) -> None:
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".ucsio-", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def run(args) -> int:
+    import io
+    import json
+
+    from .. import solve as solver
+    from ..measurement import read_measurement
+    from ..output import _clean, emit_json
+
+    if args.uncertainty and args.uncertainty < 2:
+        raise UcsioError("--uncertainty N: needs at least 2 samples")
+    if args.output is not None:
+        folder = os.path.dirname(os.path.abspath(args.output))
+        if not os.path.isdir(folder):
+            raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
+    if args.tool:
+        tcp = tool_tcp(args.tool)
+    else:
+        tcp = parse_tcp(args.tcp) if args.tcp else (0.0, 0.0, 0.0)
+    meas = read_measurement(args.measurement)
+    sol = solver.solve(meas, tcp, threshold=args.threshold, min_points=args.min_points,
+                       exclude=args.exclude, no_exclusion=args.no_exclusion, tool=args.tool)
+    if args.uncertainty:
+        solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
+                                    args.sigma_robot, args.seed)
+    result = sol.as_dict()
+
+    if args.output is not None:
+        buf = io.StringIO()
+        json.dump(_clean(result), buf, indent=2, ensure_ascii=False)
+        buf.write("\n")
+        try:
+            write_atomic(args.output, buf.getvalue())
+        except OSError as exc:
+            raise UcsioError(f"cannot write {args.output}: {exc.strerror or exc}") from None
+
+    if args.json:
+        emit_json(result)
+    else:
+        print(render(sol), end="")
+        if args.output is not None:
+            print(f"\nwritten: {args.output}")
+    return 0 if sol.accepted else 1
+
+
+def render(sol) -> str:
+    from ..output import fmt, table
+
+    f = sol.pose
+    a, b, c = f.abc
+    w, p, r = f.wpr
+    lines = [f"measured frame (UCS in robot world) from {sol.source}",
+             f"  tcp     {fmt(sol.tcp[0])}, {fmt(sol.tcp[1])}, {fmt(sol.tcp[2])}"
+             + (f"  (tool {sol.tool})" if sol.tool else ""),
+             f"  x y z   {f.x:.3f}  {f.y:.3f}  {f.z:.3f}",
+             f"  a b c   {a:.4f}  {b:.4f}  {c:.4f}   (KUKA)",
+             f"  q       [{', '.join(f'{v:.6f}' for v in f.q)}]   (ABB)",
+             f"  w p r   {w:.4f}  {p:.4f}  {r:.4f}   (Fanuc)",
+             "  matrix"]
+    for row in sol.matrix4:
+        lines.append("    " + "  ".join(f"{v:12.6f}" for v in row))
+    lines.append("")
+    rows = []
+    for pt in sol.points:
+        used = "yes" if pt.used else f"no ({pt.excluded_by})"
+        rows.append([pt.name, fmt(pt.dx), fmt(pt.dy), fmt(pt.dz), fmt(pt.residual),
+                     fmt(pt.loo_residual if pt.loo_residual == pt.loo_residual else None), used])
+    lines.append(table(["point", "dx", "dy", "dz", "|d|", "leave-one-out", "used"], rows,
+                       right={1, 2, 3, 4, 5}))
+    lines.append("")
+    lines.append(f"n {sol.n_used} of {sol.n_points} used   rms {sol.rms:.3f}   mean {sol.mean:.3f}"
+                 f"   max {sol.max:.3f} mm   (threshold {sol.threshold:g} mm,"
+                 f" min points {sol.min_points})")
+    if sol.uncertainty:
+        u = sol.uncertainty
+        s, ci, an = u["std"], u["ci95"], u["analytical_std"]
+        lines.append(f"uncertainty ({u['samples']} samples, sigma laser {u['sigma_laser']:g},"
+                     f" robot {u['sigma_robot']:g} mm):")
+        urows = [[k, f"{s[k]:.4f}", f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
+                 for k in ("x", "y", "z", "angle")]
+        lines.append(table(["", "std", "ci95", "analytical std"], urows, right={1, 3}))
+    lines.append("accepted" if sol.accepted else
+                 f"REJECTED: only {sol.n_used} points left, at least {sol.min_points} needed;"
+                 " measure again")
+    return "\n".join(lines) + "\n"

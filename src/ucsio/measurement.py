@@ -1,0 +1,272 @@
+"""Measurement files: laser tracker points paired with robot flange poses.
+
+The format (../shared/SPEC.md, "Measurement files"): a CSV with a header row;
+columns in any order, header names case-insensitive:
+
+- ``point`` (optional; default P1, P2, ...)
+- ``laser_x, laser_y, laser_z``: the point in the UCS (mm)
+- ``robot_x, robot_y, robot_z``: the flange position in robot world (mm)
+- the flange orientation in exactly one form: ``robot_a, robot_b, robot_c``
+  (KUKA, deg), ``robot_q1 .. robot_q4`` (ABB, q1 real), ``robot_w, robot_p,
+  robot_r`` (Fanuc, deg)
+- ``weight`` (optional, default 1; must be positive)
+
+Other columns are ignored. Lines starting with ``#`` and blank lines are
+skipped. A header containing ``;`` means a European export: ``;`` separates
+fields and a decimal comma is accepted (``1234,5``). Tab-separated files work
+too. Every error names the file, the line and (where it is one cell) the
+column.
+"""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import UcsioError
+
+FORMS = {
+    "kuka": ("robot_a", "robot_b", "robot_c"),
+    "abb": ("robot_q1", "robot_q2", "robot_q3", "robot_q4"),
+    "fanuc": ("robot_w", "robot_p", "robot_r"),
+}
+FORM_LABEL = {"kuka": "robot_a/b/c (KUKA)", "abb": "robot_q1..q4 (ABB)",
+              "fanuc": "robot_w/p/r (Fanuc)"}
+POSITION = ("laser_x", "laser_y", "laser_z", "robot_x", "robot_y", "robot_z")
+KNOWN = set(POSITION) | {"point", "weight"} | {c for cols in FORMS.values() for c in cols}
+
+#: ABB quaternions are read back to 6 decimals; further off than this from
+#: unit norm is a typo or a wrong column, not rounding.
+QUAT_NORM_TOLERANCE = 1e-3
+
+
+@dataclass
+class Measurement:
+    """n point pairs. ``flange`` holds the flange poses as (n, 4, 4)
+    homogeneous matrices in robot world."""
+
+    path: str
+    names: list[str]
+    lines: list[int]
+    laser: np.ndarray        # (n, 3) mm, in the UCS
+    flange: np.ndarray       # (n, 4, 4) flange pose in robot world
+    weights: np.ndarray      # (n,)
+    form: str                # 'kuka' | 'abb' | 'fanuc'
+    orientation: np.ndarray  # (n, 3) or (n, 4) as written
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+    def robot_points(self, tcp=(0.0, 0.0, 0.0)) -> np.ndarray:
+        """(n, 3): each flange pose applied to the TCP (reflector) offset,
+        given in flange coordinates."""
+        tcp = np.asarray(tcp, dtype=float).reshape(3)
+        return self.flange[:, :3, :3] @ tcp + self.flange[:, :3, 3]
+
+
+# ---------------------------------------------------------------- rotations
+
+def abc_to_matrices(abc: np.ndarray) -> np.ndarray:
+    """(n, 3) KUKA A, B, C (deg) -> (n, 3, 3): Rz(A) Ry(B) Rx(C)."""
+    a, b, c = np.radians(np.asarray(abc, dtype=float)).T
+    ca, sa, cb, sb, cc, sc = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(c), np.sin(c)
+    R = np.empty(a.shape + (3, 3))
+    R[:, 0, 0] = ca * cb
+    R[:, 0, 1] = ca * sb * sc - sa * cc
+    R[:, 0, 2] = ca * sb * cc + sa * sc
+    R[:, 1, 0] = sa * cb
+    R[:, 1, 1] = sa * sb * sc + ca * cc
+    R[:, 1, 2] = sa * sb * cc - ca * sc
+    R[:, 2, 0] = -sb
+    R[:, 2, 1] = cb * sc
+    R[:, 2, 2] = cb * cc
+    return R
+
+
+def quats_to_matrices(q: np.ndarray) -> np.ndarray:
+    """(n, 4) quaternions (q1 real) -> (n, 3, 3), normalising first."""
+    from .horn import quat_to_matrix
+    q = np.asarray(q, dtype=float)
+    return quat_to_matrix(q / np.linalg.norm(q, axis=1, keepdims=True))
+
+
+def flange_matrices(form: str, orientation: np.ndarray, position: np.ndarray) -> np.ndarray:
+    if form == "kuka":
+        R = abc_to_matrices(orientation)
+    elif form == "fanuc":
+        R = abc_to_matrices(np.asarray(orientation, dtype=float)[:, ::-1])   # W,P,R -> A=R, B=P, C=W
+    elif form == "abb":
+        R = quats_to_matrices(orientation)
+    else:
+        raise ValueError(form)
+    T = np.zeros((len(R), 4, 4))
+    T[:, :3, :3] = R
+    T[:, :3, 3] = position
+    T[:, 3, 3] = 1.0
+    return T
+
+
+# ---------------------------------------------------------------- reading
+
+def _split(line: str, sep: str) -> list[tuple[str, int]]:
+    """Fields of one line with their 1-based start column; double quotes
+    may enclose a field (``""`` inside is a quote)."""
+    fields: list[tuple[str, int]] = []
+    i, n = 0, len(line)
+    while True:
+        start = i
+        while i < n and line[i] in " \t" and sep != "\t":
+            i += 1
+        if i < n and line[i] == '"':
+            i += 1
+            buf = []
+            while i < n:
+                if line[i] == '"':
+                    if i + 1 < n and line[i + 1] == '"':
+                        buf.append('"')
+                        i += 2
+                        continue
+                    i += 1
+                    break
+                buf.append(line[i])
+                i += 1
+            text = "".join(buf)
+            while i < n and line[i] != sep:
+                i += 1
+            fields.append((text, start + 1))
+        else:
+            j = line.find(sep, i)
+            j = n if j < 0 else j
+            fields.append((line[start:j].strip(), start + 1))
+            i = j
+        if i >= n:
+            return fields
+        i += 1   # the separator
+        if i == n:
+            fields.append(("", i + 1))
+            return fields
+
+
+def _decode(raw: bytes, path: str) -> str:
+    if raw.startswith(b"\xef\xbb\xbf"):
+        raw = raw[3:]
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("cp1252", errors="replace")
+
+
+def read_measurement(path: str | os.PathLike) -> Measurement:
+    """Read a measurement CSV; UcsioError (exit 2) on anything wrong."""
+    path = os.fspath(path)
+    try:
+        with open(path, "rb") as fh:
+            raw = fh.read()
+    except OSError as exc:
+        raise UcsioError(f"cannot read measurement file: {exc.strerror or exc}", file=path) from None
+    return parse_measurement(_decode(raw, path), path)
+
+
+def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
+    text = text.lstrip("\ufeff")
+    header = None
+    rows: list[tuple[int, list[tuple[str, int]]]] = []
+    sep = ","
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        if header is None:
+            sep = ";" if ";" in line else ("\t" if "\t" in line else ",")
+            header = (lineno, _split(line, sep))
+            continue
+        rows.append((lineno, _split(line, sep)))
+    if header is None:
+        raise UcsioError("no header row (expected laser_x, laser_y, ... columns)", file=path)
+    decimal_comma = sep != ","
+
+    header_line, header_fields = header
+    columns: dict[str, int] = {}
+    for idx, (name, col) in enumerate(header_fields):
+        key = name.strip().lower()
+        if key in KNOWN:
+            if key in columns:
+                raise UcsioError(f"column {key!r} given twice", file=path, line=header_line, col=col)
+            columns[key] = idx
+
+    present = [form for form, cols in FORMS.items() if any(c in columns for c in cols)]
+    if len(present) > 1:
+        raise UcsioError("flange orientation given in two forms: "
+                         + " and ".join(FORM_LABEL[f] for f in present)
+                         + "; keep exactly one", file=path, line=header_line)
+    if not present:
+        raise UcsioError("no flange orientation columns: need robot_a/b/c (KUKA), "
+                         "robot_q1..q4 (ABB) or robot_w/p/r (Fanuc)", file=path, line=header_line)
+    form = present[0]
+    needed = POSITION + FORMS[form]
+    missing = [c for c in needed if c not in columns]
+    if missing:
+        raise UcsioError(f"missing column{'s' if len(missing) > 1 else ''} "
+                         + ", ".join(missing), file=path, line=header_line)
+    if not rows:
+        raise UcsioError("no data rows after the header", file=path, line=header_line)
+
+    width = max(columns.values()) + 1
+    names: list[str] = []
+    seen: dict[str, int] = {}
+    lines: list[int] = []
+    values = np.empty((len(rows), len(needed)))
+    weights = np.ones(len(rows))
+
+    def number(fields, key, lineno) -> float:
+        text, col = fields[columns[key]]
+        s = text.strip()
+        if decimal_comma:
+            s = s.replace(",", ".")
+        try:
+            v = float(s)
+        except ValueError:
+            what = "empty" if not s else f"not a number: {text!r}"
+            raise UcsioError(f"{key} {what}", file=path, line=lineno, col=col) from None
+        if not math.isfinite(v):
+            raise UcsioError(f"{key} is not finite: {text!r}", file=path, line=lineno, col=col)
+        return v
+
+    for r, (lineno, fields) in enumerate(rows):
+        if len(fields) < width:
+            raise UcsioError(f"expected at least {width} fields, found {len(fields)}",
+                             file=path, line=lineno)
+        for k, key in enumerate(needed):
+            values[r, k] = number(fields, key, lineno)
+        if "weight" in columns and fields[columns["weight"]][0].strip():
+            wv = number(fields, "weight", lineno)
+            if wv <= 0:
+                raise UcsioError(f"weight must be positive, got {wv:g}", file=path, line=lineno,
+                                 col=fields[columns["weight"]][1])
+            weights[r] = wv
+        name = fields[columns["point"]][0].strip() if "point" in columns else ""
+        name = name or f"P{r + 1}"
+        key = name.casefold()
+        if key in seen:
+            raise UcsioError(f"duplicate point name {name!r} (first on line {seen[key]})",
+                             file=path, line=lineno,
+                             col=fields[columns["point"]][1] if "point" in columns else None)
+        seen[key] = lineno
+        names.append(name)
+        lines.append(lineno)
+
+    laser = values[:, 0:3]
+    position = values[:, 3:6]
+    orientation = values[:, 6:]
+    if form == "abb":
+        norms = np.linalg.norm(orientation, axis=1)
+        bad = np.flatnonzero(np.abs(norms - 1.0) > QUAT_NORM_TOLERANCE)
+        if bad.size:
+            i = int(bad[0])
+            raise UcsioError(f"robot_q1..q4 is not a unit quaternion (norm {norms[i]:.6g})",
+                             file=path, line=lines[i], col=rows[i][1][columns["robot_q1"]][1])
+    flange = flange_matrices(form, orientation, position)
+    return Measurement(path=path, names=names, lines=lines, laser=laser.copy(), flange=flange,
+                       weights=weights, form=form, orientation=orientation.copy())

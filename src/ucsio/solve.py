@@ -1,0 +1,357 @@
+"""The method of ``ucsio solve`` (../shared/SPEC.md, "The method").
+
+1. Robot point i = flange pose i applied to the TCP offset.
+2. Fit R, t (robot = R laser + t) with Horn's closed form (``horn``).
+3. Residual of a point: |robot_i - (R laser_i + t)|; leave-one-out residual:
+   the same against the frame fitted from all the other used points (one
+   batched Horn call for the n subsets).
+4. Exclusion: while the largest leave-one-out residual among the used points
+   exceeds the threshold, exclude that one point and refit; stop as soon as
+   every remaining point's residual in the refit is within the threshold.
+   Fewer than ``min_points`` left: rejected.
+5. Degenerate point sets raise UcsioError (exit 2).
+
+Also ``uncertainty`` (Monte Carlo through the batched solver, with a
+first-order analytical estimate alongside) and ``load_solution`` (read a
+SOLUTION.json back as a Pose).
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from dataclasses import dataclass
+from typing import Any, Iterable, Sequence
+
+import numpy as np
+
+from . import horn
+from . import rotations as rot
+from .errors import UcsioError
+from .frames import Pose
+
+DEFAULT_THRESHOLD = 1.5
+DEFAULT_MIN_POINTS = 6
+DEFAULT_SIGMA_LASER = 0.015
+DEFAULT_SIGMA_ROBOT = 0.05
+
+
+@dataclass
+class PointResult:
+    name: str
+    residual: float          # mm, distance to the final fitted frame
+    loo_residual: float      # mm, distance to the frame fitted from the other used points (nan: undetermined)
+    used: bool
+    dx: float                # robot - (R laser + t), robot world, mm
+    dy: float
+    dz: float
+    excluded_by: str | None  # 'auto' | 'hand' | None
+    weight: float = 1.0
+    line: int | None = None
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "residual": self.residual,
+                "loo_residual": None if not math.isfinite(self.loo_residual) else self.loo_residual,
+                "used": self.used, "dx": self.dx, "dy": self.dy, "dz": self.dz,
+                "excluded_by": self.excluded_by, "weight": self.weight, "line": self.line}
+
+
+@dataclass
+class Solution:
+    pose: Pose               # the UCS in robot world: robot = R laser + t
+    points: list[PointResult]
+    n_points: int
+    n_used: int
+    rms: float
+    mean: float
+    max: float
+    accepted: bool
+    tcp: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    threshold: float = DEFAULT_THRESHOLD
+    min_points: int = DEFAULT_MIN_POINTS
+    source: str | None = None
+    tool: str | None = None
+    no_exclusion: bool = False
+    uncertainty: dict[str, Any] | None = None
+
+    @property
+    def matrix4(self) -> list[list[float]]:
+        m = self.pose.matrix
+        return [[*m[0], self.pose.x], [*m[1], self.pose.y], [*m[2], self.pose.z],
+                [0.0, 0.0, 0.0, 1.0]]
+
+    def frame_dict(self) -> dict[str, Any]:
+        d = self.pose.as_dict()
+        w, p, r = self.pose.wpr
+        d.update({"w": w, "p": p, "r": r, "matrix": self.matrix4})
+        return d
+
+    def as_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {
+            "frame": self.frame_dict(),
+            "points": [p.as_dict() for p in self.points],
+            "n_points": self.n_points, "n_used": self.n_used,
+            "rms": self.rms, "mean": self.mean, "max": self.max,
+            "accepted": self.accepted,
+            "settings": {"tcp": list(self.tcp), "tool": self.tool, "threshold": self.threshold,
+                         "min_points": self.min_points, "no_exclusion": self.no_exclusion,
+                         "source": self.source},
+        }
+        if self.uncertainty is not None:
+            d["uncertainty"] = self.uncertainty
+        return d
+
+
+# ---------------------------------------------------------------- fitting
+
+def leave_one_out(laser: np.ndarray, robot: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """(m,) distance of each point to the frame fitted from the other m-1
+    points, as one batched Horn call on m sets; nan where those m-1 points
+    cannot determine a frame (or m - 1 < 3)."""
+    m = len(laser)
+    if m < 4:
+        return np.full(m, np.nan)
+    keep = ~np.eye(m, dtype=bool)                          # row i: all but i
+    idx = np.nonzero(keep)[1].reshape(m, m - 1)
+    fit = horn.horn_batch(laser[idx], robot[idx], weights[idx])
+    predicted = np.einsum("bij,bj->bi", fit.R, laser) + fit.t
+    loo = np.linalg.norm(robot - predicted, axis=1)
+    return np.where(fit.ok, loo, np.nan)
+
+
+def solve_points(names: Sequence[str], laser, robot, weights=None, *,
+                 threshold: float = DEFAULT_THRESHOLD, min_points: int = DEFAULT_MIN_POINTS,
+                 exclude: Iterable[str] = (), no_exclusion: bool = False,
+                 lines: Sequence[int | None] | None = None) -> Solution:
+    """The method on points already in robot world (robot = flange * tcp)."""
+    laser = np.asarray(laser, dtype=float)
+    robot = np.asarray(robot, dtype=float)
+    n = len(names)
+    if laser.shape != (n, 3) or robot.shape != (n, 3):
+        raise ValueError("names, laser (n, 3) and robot (n, 3) must agree")
+    weights = np.ones(n) if weights is None else np.asarray(weights, dtype=float)
+    if not threshold > 0:
+        raise UcsioError(f"threshold must be positive, got {threshold}")
+    if min_points < 3:
+        raise UcsioError(f"min-points must be at least 3, got {min_points}")
+
+    excluded_by: list[str | None] = [None] * n
+    by_name = {nm.casefold(): i for i, nm in enumerate(names)}
+    for name in exclude:
+        i = by_name.get(name.strip().casefold())
+        if i is None:
+            raise UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(names)})")
+        excluded_by[i] = "hand"
+    used = np.array([e is None for e in excluded_by])
+
+    def fit(mask):
+        try:
+            return horn.absolute_orientation(laser[mask], robot[mask], weights[mask])
+        except UcsioError as exc:
+            which = "" if mask.all() else f" (of the {int(mask.sum())} points used)"
+            raise UcsioError(f"cannot fit a frame{which}: {exc.message}") from None
+
+    current = fit(used)
+    if not no_exclusion:
+        while used.sum() - 1 >= 3:
+            ids = np.flatnonzero(used)
+            loo = leave_one_out(laser[ids], robot[ids], weights[ids])
+            if not np.isfinite(loo).any() or np.nanmax(loo) <= threshold:
+                break
+            worst = int(ids[np.nanargmax(loo)])
+            used[worst] = False
+            excluded_by[worst] = "auto"
+            current = fit(used)
+            if used.sum() < min_points:
+                break   # rejected whatever else happens
+            res = np.linalg.norm(robot[used] - current.apply(laser[used]), axis=1)
+            if res.max() <= threshold:
+                break
+
+    d = robot - current.apply(laser)
+    residual = np.linalg.norm(d, axis=1)
+    ids = np.flatnonzero(used)
+    loo_all = residual.copy()                                # unused: all used points are "the others"
+    loo_all[ids] = leave_one_out(laser[ids], robot[ids], weights[ids])
+    r_used = residual[used]
+    n_used = int(used.sum())
+    pose = Pose.from_matrix(tuple(map(tuple, current.R.tolist())), current.t.tolist())
+    points = [PointResult(name=names[i], residual=float(residual[i]), loo_residual=float(loo_all[i]),
+                          used=bool(used[i]), dx=float(d[i, 0]), dy=float(d[i, 1]),
+                          dz=float(d[i, 2]), excluded_by=excluded_by[i], weight=float(weights[i]),
+                          line=None if lines is None else lines[i])
+              for i in range(n)]
+    return Solution(pose=pose, points=points, n_points=n, n_used=n_used,
+                    rms=float(np.sqrt(np.mean(r_used ** 2))), mean=float(np.mean(r_used)),
+                    max=float(np.max(r_used)), accepted=n_used >= min_points,
+                    threshold=float(threshold), min_points=int(min_points),
+                    no_exclusion=bool(no_exclusion))
+
+
+def solve(measurement, tcp=(0.0, 0.0, 0.0), *, threshold: float = DEFAULT_THRESHOLD,
+          min_points: int = DEFAULT_MIN_POINTS, exclude: Iterable[str] = (),
+          no_exclusion: bool = False, tool: str | None = None) -> Solution:
+    """The method on a ``measurement.Measurement``; errors name its file."""
+    tcp = tuple(float(v) for v in tcp)
+    try:
+        sol = solve_points(measurement.names, measurement.laser, measurement.robot_points(tcp),
+                           measurement.weights, threshold=threshold, min_points=min_points,
+                           exclude=exclude, no_exclusion=no_exclusion, lines=measurement.lines)
+    except UcsioError as exc:
+        if exc.file is None:
+            raise UcsioError(exc.message, file=measurement.path) from None
+        raise
+    sol.tcp = tcp                 # type: ignore[assignment]
+    sol.tool = tool
+    sol.source = measurement.path
+    return sol
+
+
+# ---------------------------------------------------------------- uncertainty
+
+def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples: int = 10000,
+                sigma_laser: float = DEFAULT_SIGMA_LASER, sigma_robot: float = DEFAULT_SIGMA_ROBOT,
+                seed: int = 0) -> dict[str, Any]:
+    """Monte Carlo uncertainty of the fitted frame.
+
+    laser (n, 3) are the used points in the UCS, robot_poses (n, 4, 4) the
+    flange poses (or (n, 3) robot points, already through the TCP). Each of
+    ``n_samples`` copies adds independent Gaussian noise, per axis, of
+    ``sigma_laser`` to the laser points and ``sigma_robot`` to the robot
+    points, and is fitted in one batched Horn call.
+
+    Returns ``samples``, ``std`` and ``ci95`` (keys x y z angle), and
+    ``analytical_std``: the first-order propagation of the same noise through
+    the least-squares fit, as a cross-check. x, y, z are the frame's origin
+    in robot world (std in mm, ci95 the 2.5 and 97.5 percentiles of the
+    coordinate). ``angle`` is the rotation angle (deg) between a sample and
+    the nominal fit: its ``std`` is the root mean square of that angle (the
+    angle is a magnitude, so it is measured from 0, the nominal), and its
+    ``ci95`` is [0, 95th percentile]: the orientation lies within that angle
+    of the nominal one with 95 % probability.
+    """
+    laser = np.asarray(laser, dtype=float)
+    robot_poses = np.asarray(robot_poses, dtype=float)
+    if robot_poses.ndim == 3:
+        robot = robot_poses[:, :3, :3] @ np.asarray(tcp, dtype=float) + robot_poses[:, :3, 3]
+    else:
+        robot = robot_poses
+    n = len(laser)
+    w = np.ones(n) if weights is None else np.asarray(weights, dtype=float)
+    if n_samples < 2:
+        raise UcsioError("--uncertainty needs at least 2 samples")
+    nominal = horn.absolute_orientation(laser, robot, w)
+
+    rng = np.random.default_rng(seed)
+    noisy_l = laser + rng.normal(0.0, sigma_laser, size=(n_samples, n, 3))
+    noisy_r = robot + rng.normal(0.0, sigma_robot, size=(n_samples, n, 3))
+    fits = horn.horn_batch(noisy_l, noisy_r, np.broadcast_to(w, (n_samples, n)))
+    t = fits.t
+    angle = horn.rotation_angle_deg(nominal.R[None], fits.R)
+
+    std = {axis: float(np.std(t[:, k], ddof=1)) for k, axis in enumerate("xyz")}
+    std["angle"] = float(np.sqrt(np.mean(angle ** 2)))
+    lo, hi = np.percentile(t, [2.5, 97.5], axis=0)
+    ci95 = {axis: [float(lo[k]), float(hi[k])] for k, axis in enumerate("xyz")}
+    ci95["angle"] = [0.0, float(np.percentile(angle, 95.0))]
+    return {"samples": int(n_samples), "sigma_laser": float(sigma_laser),
+            "sigma_robot": float(sigma_robot), "seed": int(seed),
+            "degenerate_samples": int(np.count_nonzero(~fits.ok)),
+            "std": std, "ci95": ci95,
+            "analytical_std": analytical_std(laser, nominal, w, sigma_laser, sigma_robot)}
+
+
+def analytical_std(laser, fit: horn.HornFit, weights, sigma_laser: float,
+                   sigma_robot: float) -> dict[str, float]:
+    """First-order covariance of (t, rotation) of the weighted least-squares
+    fit. Linearising robot_i = exp([dθ]x) R l_i + t + dt about the fit gives
+    the Jacobian J_i = [I3, -[R l_i]x] for (dt, dθ); each point's error is
+    isotropic with variance s^2 = sigma_robot^2 + sigma_laser^2 (the laser
+    noise rotated by R), so cov = s^2 H^-1 (sum w_i^2 J_i^T J_i) H^-1 with
+    H = sum w_i J_i^T J_i. The angle is sqrt(trace cov_θ) in degrees."""
+    p = np.asarray(laser, dtype=float) @ fit.R.T            # R l_i
+    w = np.asarray(weights, dtype=float)
+    J = np.zeros((len(p), 3, 6))
+    J[:, :, :3] = np.eye(3)
+    px, py, pz = p.T
+    zero = np.zeros_like(px)
+    skew = np.stack([np.stack([zero, -pz, py], -1), np.stack([pz, zero, -px], -1),
+                     np.stack([-py, px, zero], -1)], axis=1)   # [p]x
+    J[:, :, 3:] = -skew
+    JtJ = np.einsum("nki,nkj->nij", J, J)
+    H = np.einsum("n,nij->ij", w, JtJ)
+    G = np.einsum("n,nij->ij", w * w, JtJ)
+    Hinv = np.linalg.inv(H)
+    cov = (sigma_robot ** 2 + sigma_laser ** 2) * Hinv @ G @ Hinv
+    d = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    return {"x": float(d[0]), "y": float(d[1]), "z": float(d[2]),
+            "angle": float(np.degrees(np.sqrt(max(np.trace(cov[3:, 3:]), 0.0))))}
+
+
+def solution_uncertainty(measurement, sol: Solution, n_samples: int,
+                         sigma_laser: float = DEFAULT_SIGMA_LASER,
+                         sigma_robot: float = DEFAULT_SIGMA_ROBOT, seed: int = 0) -> dict[str, Any]:
+    """``uncertainty`` over the used points of a solution; stored on it."""
+    used = np.array([p.used for p in sol.points])
+    sol.uncertainty = uncertainty(measurement.laser[used], measurement.flange[used], sol.tcp,
+                                  measurement.weights[used], n_samples, sigma_laser, sigma_robot,
+                                  seed)
+    return sol.uncertainty
+
+
+# ---------------------------------------------------------------- SOLUTION.json
+
+def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose:
+    """The frame of a SOLUTION.json written by ``ucsio solve -o``, or of a
+    plain JSON object with x, y, z and either a, b, c (KUKA) or q (ABB order).
+    A solution whose dataset was rejected is refused unless
+    ``allow_rejected``; q and a, b, c given together must agree."""
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8-sig") as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
+    except json.JSONDecodeError as exc:
+        raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno,
+                         col=exc.colno) from None
+    if not isinstance(data, dict):
+        raise UcsioError("expected a JSON object with a 'frame' or x, y, z ...", file=path)
+    if data.get("accepted") is False and not allow_rejected:
+        raise UcsioError("this solution's dataset was rejected (too few points within the "
+                         "threshold): measure again", file=path)
+    frame = data.get("frame", data)
+    if not isinstance(frame, dict):
+        raise UcsioError("'frame' is not a JSON object", file=path)
+
+    def num(key):
+        v = frame.get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise UcsioError(f"frame key {key!r} missing or not a finite number", file=path)
+        return float(v)
+
+    x, y, z = num("x"), num("y"), num("z")
+    has_q = frame.get("q") is not None
+    has_abc = all(frame.get(k) is not None for k in "abc")
+    if not has_q and not has_abc:
+        raise UcsioError("frame needs either q [q1, q2, q3, q4] or a, b, c", file=path)
+    pose_q = None
+    if has_q:
+        q = frame["q"]
+        if (not isinstance(q, list) or len(q) != 4
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                           and math.isfinite(v) for v in q)):
+            raise UcsioError("frame key 'q' must be a list of 4 numbers", file=path)
+        if abs(math.sqrt(sum(v * v for v in q)) - 1.0) > 1e-3:
+            raise UcsioError("frame key 'q' is not a unit quaternion", file=path)
+        pose_q = Pose.from_quat(x, y, z, q)
+    if has_abc:
+        pose_abc = Pose.from_abc(x, y, z, num("a"), num("b"), num("c"))
+        if pose_q is not None and rot.quat_angle(pose_q.q, pose_abc.q) > 1e-4:
+            raise UcsioError("frame's q and a, b, c disagree "
+                             f"({rot.quat_angle(pose_q.q, pose_abc.q):.4f} deg apart)", file=path)
+        if pose_q is not None:
+            # Both agree: keep the full-precision quaternion with a, b, c as written.
+            return Pose(x, y, z, pose_q.q, pose_abc.abc)
+        return pose_abc
+    return pose_q  # type: ignore[return-value]
