@@ -19,10 +19,13 @@ def grammar_dir() -> Path:
 
 
 @functools.lru_cache(maxsize=None)
-def parser(name: str, start: tuple[str, ...]):
+def parser(name: str, start: tuple[str, ...], positions: bool = True):
+    """A cached LALR parser. ``positions=False`` skips Lark's position
+    propagation to rule nodes (a third of the parse time); tokens always keep
+    theirs, which is all a grammar that keeps its sign tokens needs."""
     from lark import Lark  # lazy: only commands that parse pay for it
 
     path = grammar_dir() / f"{name}.lark"
     return Lark(path.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
-                start=list(start), propagate_positions=True, maybe_placeholders=False,
+                start=list(start), propagate_positions=positions, maybe_placeholders=False,
                 cache=True)

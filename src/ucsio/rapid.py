@@ -222,10 +222,6 @@ class Compact:
         from lark import Token
 
         for sub in tree.iter_subtrees():
-            meta = sub.meta
-            if not meta.empty:
-                meta.start_pos = self(meta.start_pos)
-                meta.end_pos = self(meta.end_pos)
             for tok in sub.children:
                 if isinstance(tok, Token) and tok.start_pos is not None:
                     tok.start_pos = self(tok.start_pos)
@@ -235,7 +231,7 @@ class Compact:
 # -- Lark -----------------------------------------------------------------------
 def _parser():
     from . import grammar
-    return grammar.parser("rapid", ("file", "data_decl"))
+    return grammar.parser("rapid", ("file", "data_decl"), positions=False)
 
 
 def parse_tree(doc: Document, source: str, locate=lambda pos: pos):
@@ -301,12 +297,12 @@ def _value(node):
         tok = node.children[0]
         return Number(Span(tok.start_pos, tok.end_pos), str(tok), _num(str(tok)))
     if kind == "neg" or kind == "pos":
-        inner = _value(node.children[0])
-        if isinstance(inner, Number):
-            start = node.meta.start_pos
+        sign_token, operand = node.children
+        inner = _value(operand)
+        if isinstance(inner, Number):  # "-0.5" and "- 0.5": one value span, sign included
             sign = -1.0 if kind == "neg" else 1.0
-            return Number(Span(start, inner.span.end), None, sign * inner.value)  # type: ignore[arg-type]
-        return _Expr(node.meta.start_pos, node.meta.end_pos)
+            return Number(Span(sign_token.start_pos, inner.span.end), None, sign * inner.value)  # type: ignore[arg-type]
+        return _Expr(*_extent(node))
     if kind == "bool":
         return str(node.children[0]).upper() == "TRUE"
     if kind == "string":
@@ -314,8 +310,15 @@ def _value(node):
         return raw.replace('""', '"')
     if kind == "aggregate":
         return [_value(c) for c in node.children if isinstance(c, Tree) or c.type != "COMMA"]
-    meta = node.meta
-    return _Expr(getattr(meta, "start_pos", 0), getattr(meta, "end_pos", 0))
+    return _Expr(*_extent(node))
+
+
+def _extent(tree) -> tuple[int, int]:
+    """First and last token positions of a subtree (rule nodes carry none)."""
+    from lark import Token
+
+    toks = [t for t in tree.scan_values(lambda v: isinstance(v, Token))]
+    return (toks[0].start_pos, toks[-1].end_pos) if toks else (0, 0)
 
 
 def _num(text: str) -> float:
@@ -353,8 +356,8 @@ def declarations(doc: Document, tree) -> list[Decl]:
                     dims = [_value(d) for d in r.children]
                 else:
                     value = _value(r)
-            out.append(Decl(scope, storage, type_name, name, dims, value,
-                            item.meta.start_pos, item.meta.end_pos, module_name))
+            start, end = _extent(item)
+            out.append(Decl(scope, storage, type_name, name, dims, value, start, end, module_name))
     return out
 
 
