@@ -1,0 +1,630 @@
+"""KUKA KRL data lists ($config.dat, program .dat): text -> frames, through
+grammars/krl.lark.
+
+KRL data lists are line-oriented: one declaration or element initialisation
+per line, no terminator, ``;`` starts a comment. Two ways through the same
+grammar:
+
+- ``full=True`` (``ucsio check``): Lark parses every byte of the file (start
+  symbol ``file``), so a syntax error anywhere is found.
+- the fast path (``ucsio frames``, ``diff``, ``patch``): a line-oriented
+  outline (a few regular expressions, one pass each) picks the lines that
+  matter for frames: FRAME declarations, element lines of FRAME arrays,
+  the TOOL/BASE name and type tables, LOAD_DATA, the MAX_* sizes, and
+  MACHINE_FRAME_DAT/MACHINE_DEF when a base is tied to an external
+  kinematic. Every other character is replaced by a space (newlines kept), so
+  offsets and line numbers are those of the real file, and Lark parses that
+  masked text in one call (start symbol ``lines``). A 120 KB $config.dat costs a few hundred short lines of Lark, not 3,000.
+
+Both paths feed the same interpretation, which only looks at those
+statements, so they give identical frames and lints (tests/test_krl.py checks
+that on the whole corpus).
+
+Frames: ``TOOL_DATA[n]`` (relative to the flange; TOOL_TYPE gives the role:
+tool, or robot-guided workpiece for #TCP), ``BASE_DATA[n]`` (relative to world,
+or to an external kinematic when ``MACHINE_FRAME_DAT[n].MACH_DEF_INDEX`` is not
+0; BASE_TYPE #TCP marks an external, fixed TCP), labelled from
+``TOOL_NAME[n,]``/``BASE_NAME[n,]``; and every other FRAME variable or FRAME
+array element, under its declared spelling (``gfBaseShift[2]``), reference
+``unknown`` since KRL does not say. E6POS/POS points are not frames.
+"""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from .controller import ControllerFile
+from .document import Document, Span
+from .frames import Frame, Number, Pose
+
+VENDOR = "kuka"
+START = ("file", "lines")
+# What TOOL_TYPE[n] / BASE_TYPE[n] (ENUM IPO_M_T: the interpolation mode the
+# entry is used with) say. FORMATS.md 2.7 [M] read TOOL_TYPE #BASE as "external
+# TCP, relative to world" and BASE_TYPE #TCP as "relative to the flange". The
+# corpus contradicts it: six of the seven real $config.dat with named tools have
+# TOOL_TYPE[1]=#BASE for plainly robot-held tools (GripperBP2, VENTOSA_SACOS,
+# gripperFingers, Spindle, cutters), and Zinkerreka's BASE_TYPE[2]=#TCP entry is
+# named "laserTCP", a fixed tool. That is KUKA's $IPO_MODE: #BASE = normal
+# (robot-held tool, fixed base), #TCP = external TCP. KSS stores a fixed tool in
+# the BASE table and a robot-guided workpiece in the TOOL table, so TOOL_DATA is
+# always relative to the flange and BASE_DATA to world (or to an external
+# kinematic, MACHINE_FRAME_DAT); the type only gives the role.
+TOOL_ROLES = {"#NONE": "tool", "#BASE": "tool", "#TCP": "workpiece"}
+BASE_ROLES = {"#NONE": "base", "#BASE": "base", "#TCP": "external_tcp"}
+TOOL_REFERENCE = {None: "flange", "#NONE": "flange", "#BASE": "flange", "#TCP": "flange"}
+BASE_REFERENCE = {None: "world", "#NONE": "world", "#BASE": "world", "#TCP": "world"}
+LABEL_MAX = 24                      # TOOL_NAME/BASE_NAME are CHAR [n,24]
+REAL_MAX = 3.4028235e38             # KRL REAL is float32
+COMPONENTS = ("x", "y", "z", "a", "b", "c")
+
+# $config.dat tables read besides the FRAME arrays themselves. MACHINE_FRAME_DAT
+# and MACHINE_DEF (external kinematics) only matter for a base tied to one, so
+# the fast path reads them only when some MACH_DEF_INDEX is not 0.
+TABLES = ("TOOL_DATA", "BASE_DATA", "TOOL_NAME", "BASE_NAME", "TOOL_TYPE", "BASE_TYPE",
+          "LOAD_DATA")
+MACHINE_TABLES = ("MACHINE_FRAME_DAT", "MACHINE_DEF")
+_MACHINE_USED = re.compile(r"MACH_DEF_INDEX[ \t\f\r]+[+-]?0*[1-9]", re.I)
+
+# -- the outline (fast path) --------------------------------------------------
+# Whitespace is the grammar's WS, [ \t\f\r]; a line is what ends at "\n".
+_MODS = r"^[ \t\f\r]*(?:(?:DECL|GLOBAL|CONST)[ \t\f\r]+)*"
+_FRAME_DECL = re.compile(_MODS + r"FRAME[ \t\f\r][^\n]*", re.I | re.M)
+_MAX_DECL = re.compile(_MODS + r"INT[ \t\f\r]+MAX_[^\n]*", re.I | re.M)
+_DEFDAT = re.compile(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]+(PUBLIC)\b)?", re.I | re.M)
+_ENDDAT = re.compile(r"^[ \t\f\r]*ENDDAT\b", re.I | re.M)
+_STATEMENT_BEFORE = re.compile(r"^[ \t\f\r]*[^\s;&]", re.M)
+_IDENT = re.compile(r"[A-Za-z_$][\w$]*")
+_BRACED = re.compile(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+
+
+def _element_re(names) -> re.Pattern:
+    alt = "|".join(sorted((re.escape(n) for n in names), key=len, reverse=True))
+    return re.compile(r"^[ \t\f\r]*(?:" + alt + r")[ \t\f\r]*[\[=][^\n]*", re.I | re.M)
+
+
+def outline(text: str) -> list[tuple[int, int]]:
+    """Spans (start, end) of the lines the frames depend on, in order; each
+    span is a line's content without its newline."""
+    spans = []
+    names = set(TABLES)
+    for m in _FRAME_DECL.finditer(text):
+        spans.append((m.start(), m.end()))
+        # every identifier on the line outside {...}, "..." and the comment:
+        # a superset of the declared names, which is all the filter needs.
+        rest = m.group()
+        rest = _BRACED.sub(" ", rest).split(";", 1)[0]
+        names.update(n.upper() for n in _IDENT.findall(rest))
+    for m in _MAX_DECL.finditer(text):
+        spans.append((m.start(), m.end()))
+    if _MACHINE_USED.search(text):
+        names.update(MACHINE_TABLES)
+    for m in _element_re(names).finditer(text):
+        spans.append((m.start(), m.end()))
+    spans.sort()
+    return spans
+
+
+def masked(text: str, spans: list[tuple[int, int]]) -> str:
+    """``text`` with every character outside ``spans`` replaced by a space,
+    newlines kept: same length, same offsets, same line numbers."""
+    out = []
+    pos = 0
+    for s, e in spans:
+        if s < pos:          # a line matched twice
+            continue
+        if s > pos:
+            out.append("\n".join([" " * len(part) for part in text[pos:s].split("\n")]))
+        out.append(text[s:e])
+        pos = e
+    if pos < len(text):
+        out.append("\n".join([" " * len(part) for part in text[pos:].split("\n")]))
+    return "".join(out)
+
+
+# -- parsing -------------------------------------------------------------------
+def _parser():
+    from .grammar import parser
+    return parser("krl", START)
+
+
+def _raise_syntax(doc: Document, text: str, exc: Exception):
+    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
+
+    if isinstance(exc, UnexpectedCharacters):
+        pos = exc.pos_in_stream
+        bad = _bad_number(text, pos)
+        if bad:
+            return doc.error(f"malformed number {text[bad[0]:bad[1]]!r}", bad[0])
+        ch = text[pos]
+        if ch == '"':
+            return doc.error("unterminated string: missing '\"' before the end of the line", pos)
+        if ch == "'":
+            return doc.error("unterminated character literal: missing \"'\"", pos)
+        return doc.error(f"syntax error: unexpected character {ch!r}", pos)
+    if isinstance(exc, UnexpectedEOF):
+        return doc.error("unexpected end of file", len(text))
+    if isinstance(exc, UnexpectedToken):
+        tok = exc.token
+        expected = set(exc.expected or ())
+        if tok.type == "$END":
+            pos = len(text)
+            if "ENDDAT" in expected:
+                return doc.error("missing ENDDAT: the DEFDAT data list is never closed", pos)
+            return doc.error("unexpected end of file" + _expecting(expected), pos)
+        pos = tok.start_pos
+        bad = _bad_number(text, pos)
+        if bad:
+            return doc.error(f"malformed number {text[bad[0]:bad[1]]!r}", bad[0])
+        if tok.type == "_NL":
+            if "RBRACE" in expected:
+                return doc.error("unterminated structure: missing '}' before the end of the line",
+                                 pos)
+            if "RSQB" in expected:
+                return doc.error("unterminated index: missing ']' before the end of the line", pos)
+            return doc.error("unexpected end of line" + _expecting(expected), pos)
+        if tok.type == "ENDDAT" or tok.type == "DEFDAT":
+            return doc.error(f"unexpected {tok.value}" + _expecting(expected), pos)
+        return doc.error(f"syntax error: unexpected {tok.value!r}" + _expecting(expected), pos)
+    raise exc
+
+
+_READABLE = {"_NL": "end of line", "NAME": "a name", "NUMBER": "a number", "INT": "an integer",
+             "STRING": "a string", "CHARLIT": "a character literal", "ENUMVAL": "#VALUE",
+             "HEADER": "an & header", "$END": "end of file", "LBRACE": "'{'", "RBRACE": "'}'",
+             "LSQB": "'['", "RSQB": "']'", "COMMA": "','", "EQUAL": "'='", "COLON": "':'",
+             "LPAR": "'('", "RPAR": "')'"}
+
+
+def _expecting(expected: set) -> str:
+    words = sorted({_READABLE.get(e, e if not e.startswith("__") else "a keyword")
+                    for e in expected})
+    if not words or len(words) > 6:
+        return ""
+    return "; expected " + " or ".join(words)
+
+
+def _bad_number(text: str, pos: int):
+    """(start, end) of a malformed number around ``pos`` ('1.2.3', '1e', '12ab')."""
+    n = len(text)
+    s = pos
+    while s > 0 and (text[s - 1].isalnum() or text[s - 1] in "._+-$"):
+        s -= 1
+    e = pos
+    while e < n and (text[e].isalnum() or text[e] in "._+-$"):
+        e += 1
+    word = text[s:e]
+    if not word or not (word[0].isdigit() or word[0] in ".+-"):
+        return None
+    if not any(c.isdigit() for c in word) or _NUMBER.match(word):
+        return None
+    return s, e
+
+
+def _parse(doc: Document, text: str, start: str):
+    from lark.exceptions import LarkError
+
+    try:
+        return _parser().parse(text, start=start)
+    except LarkError as exc:
+        if start == "file":
+            m = _DEFDAT.search(text)
+            if m is not None and _STATEMENT_BEFORE.search(text, 0, m.start()):
+                raise doc.error("DEFDAT must come first, after the & header lines",
+                                m.start() + len(m.group()) - len(m.group().lstrip())) from None
+        raise _raise_syntax(doc, text, exc) from None
+
+
+# -- interpretation --------------------------------------------------------------
+class _Val:
+    """A value from the tree: kind ('number', 'string', 'enum', 'bool',
+    'char', 'name', 'struct'), python value, span, for numbers the text as
+    written, for structs the fields given twice."""
+
+    __slots__ = ("kind", "value", "start", "end", "text", "dups")
+
+    def __init__(self, kind, value, start, end, text=None):
+        self.kind, self.value, self.start, self.end, self.text = kind, value, start, end, text
+        self.dups = ()
+
+
+def _value(node) -> _Val:
+    from lark import Token
+
+    if isinstance(node, Token):
+        t = node.type
+        v = node.value
+        if t == "NUMBER":
+            return _Val("number", float(v), node.start_pos, node.end_pos, v)
+        if t == "STRING":
+            return _Val("string", v[1:-1], node.start_pos, node.end_pos)
+        if t == "ENUMVAL":
+            return _Val("enum", "#" + v[1:].strip().upper(), node.start_pos, node.end_pos)
+        if t == "TRUE" or t == "FALSE":
+            return _Val("bool", t == "TRUE", node.start_pos, node.end_pos)
+        if t == "CHARLIT":
+            return _Val("char", v[1:-1], node.start_pos, node.end_pos)
+        return _Val("name", v, node.start_pos, node.end_pos)
+    # struct: {KEY: (field name token, _Val)} in source order; duplicates kept
+    fields: dict[str, Any] = {}
+    dups = []
+    for f in node.children:
+        ch = f.children
+        if not isinstance(ch[0], Token):   # Type: prefix
+            ch = ch[1:]
+        key = ch[0].value.upper()
+        if key in fields:
+            dups.append((key, ch[0].start_pos))
+        fields[key] = (ch[0], _value(ch[-1]))
+    val = _Val("struct", fields, node.meta.start_pos, node.meta.end_pos)
+    val.dups = dups
+    return val
+
+
+class _Stmt:
+    __slots__ = ("kind", "line", "start", "mods", "type", "vars", "name", "index", "value")
+
+
+_RESERVED = {"DEFDAT", "ENDDAT", "DEF", "END", "DEFFCT", "ENDFCT"}
+
+
+def _statements(tree, doc: Document):
+    """decl and assign statements of the tree, simplified, in order."""
+    from lark import Token, Tree
+
+    if tree.data == "file":
+        body = tree.children[-1]
+        items = body.children
+    else:
+        items = tree.children
+    out = []
+    for st in items:
+        if not isinstance(st, Tree):
+            continue
+        d = st.data
+        if d == "decl":
+            ch = st.children
+            i = 0
+            mods = []
+            while ch[i].type in ("DECL", "GLOBAL", "CONST"):
+                mods.append(ch[i].type)
+                i += 1
+            s = _Stmt()
+            s.kind = "decl"
+            s.line = st.meta.line
+            s.start = st.meta.start_pos
+            s.mods = mods
+            s.type = ch[i].value.upper()
+            if s.type in _RESERVED:     # the contextual lexer took it for a type name
+                raise doc.error(f"unexpected {ch[i].value}: " + (
+                    "DEFDAT must come first, after the & header lines" if s.type == "DEFDAT"
+                    else "not allowed in a data list"), ch[i].start_pos)
+            s.vars = []
+            for v in ch[i + 1:]:
+                vch = v.children
+                name = vch[0]
+                dims = None
+                val = None
+                for c in vch[1:]:
+                    if isinstance(c, Tree) and c.data == "dims":
+                        dims = [int(t.value) if t.type == "INT" else t.value for t in c.children]
+                    else:
+                        val = c
+                s.vars.append((name, dims, val))
+            out.append(s)
+        elif d == "assign":
+            ch = st.children
+            s = _Stmt()
+            s.kind = "assign"
+            s.line = st.meta.line
+            s.start = st.meta.start_pos
+            s.name = ch[0]
+            s.index = None
+            if len(ch) == 3:
+                s.index = [int(t.value) for t in ch[1].children]
+            s.value = ch[-1]
+            out.append(s)
+        elif d in ("defdat", "lines"):
+            out.extend(_statements(st, doc))
+    return out
+
+
+def _defdat(tree, text: str, full: bool):
+    if full:
+        body = tree.children[-1]
+        if body.data == "defdat":
+            ch = body.children
+            return {"name": ch[1].value, "public": any(getattr(c, "type", None) == "PUBLIC"
+                                                       for c in ch[2:4])}
+        return None
+    m = _DEFDAT.search(text)
+    if m is None:
+        return None
+    return {"name": m.group(1), "public": m.group(2) is not None}
+
+
+def parse(doc: Document, full: bool = False) -> ControllerFile:
+    """Parse a KRL data list into frames, lints and tables."""
+    text = doc.text
+    if full:
+        tree = _parse(doc, text, "file")
+        stmts = _statements(tree, doc)
+        defdat = _defdat(tree, text, True)
+    else:
+        # the structure the fast path does not parse, checked cheaply
+        m = _DEFDAT.search(text)
+        if m is not None and _ENDDAT.search(text, m.end()) is None:
+            raise doc.error("missing ENDDAT: the DEFDAT data list is never closed", len(text))
+        tree = _parse(doc, masked(text, outline(text)), "lines")
+        stmts = _statements(tree, doc)
+        defdat = _defdat(tree, text, False)
+    cf = ControllerFile(document=doc, vendor=VENDOR)
+    _Interpreter(doc, cf).run(stmts)
+    cf.extra["defdat"] = defdat
+    return cf
+
+
+class _Interpreter:
+    def __init__(self, doc: Document, cf: ControllerFile):
+        self.doc = doc
+        self.cf = cf
+
+    # -- helpers --
+    def lint(self, offset: int, code: str, message: str) -> None:
+        self.cf.lint(offset, code, message)
+
+    def run(self, stmts) -> None:
+        frame_arrays: dict[str, tuple[str, list]] = {}     # KEY -> (spelling, dims)
+        frame_scalars: dict[str, str] = {}                 # KEY -> spelling
+        frame_decls = []                                   # (stmt, name tok, value node)
+        uninitialised = []
+        maxima: dict[str, int] = {}
+        for s in stmts:
+            if s.kind != "decl":
+                continue
+            if s.type == "FRAME":
+                for name, dims, val in s.vars:
+                    key = name.value.upper()
+                    if dims is not None:
+                        frame_arrays[key] = (name.value, dims)
+                    else:
+                        frame_scalars[key] = name.value
+                        if val is None:
+                            uninitialised.append(name.value)
+                        else:
+                            frame_decls.append((s, name, val))
+            elif s.type == "INT" and s.vars and s.vars[0][0].value.upper().startswith("MAX_"):
+                for name, dims, val in s.vars:
+                    key = name.value.upper()
+                    if key.startswith("MAX_") and dims is None and val is not None \
+                            and getattr(val, "type", None) == "NUMBER":
+                        maxima[key] = int(float(val.value))
+
+        # element lines, by table
+        labels: dict[tuple[str, int], tuple[str, int]] = {}   # (TOOL|BASE, n) -> (label, offset)
+        types: dict[tuple[str, int], tuple[str, int]] = {}
+        loads: dict[int, dict] = {}
+        mframes: dict[int, dict] = {}
+        machines: dict[int, dict] = {}
+        elements = []          # (stmt, key) for FRAME elements / FRAME scalar assignments
+        for s in stmts:
+            if s.kind != "assign":
+                continue
+            key = s.name.value.upper()
+            idx = s.index
+            one = idx[0] if idx and len(idx) >= 1 else None
+            if key in ("TOOL_DATA", "BASE_DATA") or key in frame_arrays \
+                    or (key in frame_scalars and not idx):
+                elements.append((s, key))
+            elif key in ("TOOL_NAME", "BASE_NAME") and one is not None:
+                v = _value(s.value)
+                if v.kind != "string":
+                    self.lint(v.start, "bad-label", f"{s.name.value}[{one},] is not a string")
+                    continue
+                labels[(key[:4], one)] = (v.value, v.start)
+            elif key in ("TOOL_TYPE", "BASE_TYPE") and one is not None:
+                v = _value(s.value)
+                if v.kind != "enum":
+                    self.lint(v.start, "bad-type", f"{s.name.value}[{one}] is not an #ENUM value")
+                    continue
+                types[(key[:4], one)] = (v.value, v.start)
+            elif key == "LOAD_DATA" and one is not None:
+                v = _value(s.value)
+                if v.kind == "struct":
+                    loads[one] = _load(v)
+            elif key == "MACHINE_FRAME_DAT" and one is not None:
+                v = _value(s.value)
+                if v.kind == "struct":
+                    f = v.value
+                    idxv = f.get("MACH_DEF_INDEX")
+                    par = f.get("PARENT")
+                    mframes[one] = {
+                        "index": int(idxv[1].value) if idxv and idxv[1].kind == "number" else 0,
+                        "parent": par[1].value.rstrip() if par and par[1].kind == "string"
+                        else None}
+            elif key == "MACHINE_DEF" and one is not None:
+                v = _value(s.value)
+                if v.kind == "struct":
+                    f = v.value
+                    mach = {k.lower(): (f[k][1].value.rstrip() if f[k][1].kind == "string"
+                                        else f[k][1].value)
+                            for k in ("NAME", "PARENT", "MECH_TYPE") if k in f}
+                    root = f.get("ROOT")
+                    if root and root[1].kind == "struct":
+                        r = root[1].value
+                        mach["root"] = {c: r[c.upper()][1].value for c in COMPONENTS
+                                        if c.upper() in r and r[c.upper()][1].kind == "number"}
+                    machines[one] = mach
+
+        # frames in document order
+        items = [(s.start, s, name, val) for s, name, val in frame_decls]
+        items += [(s.start, s, None, None) for s, _ in elements]
+        items.sort(key=lambda it: it[0])
+        frames = self.cf.frames
+        seen: dict[str, Frame] = {}
+        for _, s, name_tok, val in items:
+            if name_tok is not None:                          # FRAME x={...}
+                fr = self.frame(name_tok.value, "FRAME", s, val)
+                fr.reference = "unknown"
+                fr.info.update(_mods_info(s.mods))
+            else:
+                key = s.name.value.upper()
+                idx = s.index or []
+                sub = "[" + ",".join(str(i) for i in idx) + "]" if idx else ""
+                if key in ("TOOL_DATA", "BASE_DATA") and len(idx) == 1:
+                    fr = self.frame(key + sub, key, s, s.value)
+                    self.table_entry(fr, key, idx[0], labels, types, loads, mframes, machines)
+                else:
+                    spelling = frame_arrays[key][0] if key in frame_arrays else \
+                        frame_scalars.get(key, s.name.value)
+                    if key in ("TOOL_DATA", "BASE_DATA") and key not in frame_arrays:
+                        spelling = key
+                    fr = self.frame(spelling + sub, "FRAME", s, s.value)
+                    fr.reference = "unknown"
+                dims = frame_arrays.get(key, (None, None))[1]
+                if dims and idx and len(idx) == len(dims) and \
+                        any(isinstance(d, int) and (i < 1 or i > d) for i, d in zip(idx, dims)):
+                    self.lint(s.start, "index-out-of-range",
+                              f"{fr.name} is outside the declared size "
+                              f"[{','.join(str(d) for d in dims)}]")
+            k = fr.name.upper()
+            if k in seen:
+                self.lint(s.start, "duplicate-frame",
+                          f"{fr.name} is initialised twice (lines {seen[k].line} and {fr.line})")
+            else:
+                seen[k] = fr
+            frames.append(fr)
+
+        self.duplicate_names()
+        extra = self.cf.extra
+        extra["tables"] = dict(sorted(maxima.items()))
+        extra["arrays"] = {sp: dims for sp, dims in frame_arrays.values()}
+        extra["uninitialised"] = uninitialised
+        extra["loads"] = loads
+
+    def frame(self, name: str, ftype: str, s, val_node) -> Frame:
+        doc = self.doc
+        fr = Frame(name=name, vendor=VENDOR, type=ftype, pose=None, file=doc.path,
+                   line=s.line, document=doc)
+        v = _value(val_node)
+        if v.kind != "struct":
+            self.lint(v.start, "not-a-frame", f"{name}: a FRAME value is written {{X ..,Y ..,"
+                                              f"Z ..,A ..,B ..,C ..}}")
+            return fr
+        for key, pos in v.dups:
+            self.lint(pos, "duplicate-component", f"{name}: component {key} given twice")
+        nums = {}
+        for key, (tok, fv) in v.value.items():
+            comp = key.lower()
+            if comp not in COMPONENTS:
+                self.lint(tok.start_pos, "unknown-component",
+                          f"{name}: a FRAME has no component {tok.value}")
+                continue
+            if fv.kind != "number":
+                self.lint(fv.start, "not-a-number", f"{name}: component {tok.value} is not a number")
+                continue
+            if not (abs(fv.value) <= REAL_MAX):
+                raise doc.error(f"number {fv.text} is out of range for a KRL REAL (float32)",
+                                fv.start)
+            nums[comp] = Number(Span(fv.start, fv.end), fv.text, fv.value)
+        fr.numbers = {c: nums[c] for c in COMPONENTS if c in nums}
+        missing = [c.upper() for c in COMPONENTS if c not in nums]
+        if missing:
+            self.lint(v.start, "missing-component",
+                      f"{name}: component{'s' if len(missing) > 1 else ''} "
+                      f"{', '.join(missing)} missing: the frame has no complete value")
+        else:
+            fr.pose = Pose.from_abc(*(nums[c].value for c in COMPONENTS))
+        return fr
+
+    def table_entry(self, fr: Frame, key: str, n: int, labels, types, loads, mframes,
+                    machines) -> None:
+        kind = key[:4]                       # TOOL | BASE
+        lab = labels.get((kind, n))
+        if lab is not None:
+            label, pos = lab
+            if len(label) > LABEL_MAX:
+                self.lint(pos, "label-too-long",
+                          f"{kind}_NAME[{n},] is {len(label)} characters; the controller "
+                          f"keeps {LABEL_MAX}")
+            if '"' in label:
+                self.lint(pos, "label-quote", f'{kind}_NAME[{n},] contains \'"\'')
+            label = label.rstrip(" ")
+            fr.label = label or None
+            fr.info["label_offset"] = pos
+        t = types.get((kind, n))
+        tv = t[0] if t else None
+        roles = TOOL_ROLES if kind == "TOOL" else BASE_ROLES
+        if tv is not None and tv not in roles:
+            self.lint(t[1], "unknown-type", f"{kind}_TYPE[{n}]={tv}: expected "
+                                            f"{', '.join(sorted(roles))}")
+        fr.info[kind.lower() + "_type"] = tv
+        fr.info["role"] = roles.get(tv, "unknown") if tv is not None else roles["#NONE"]
+        if kind == "TOOL":
+            fr.reference = TOOL_REFERENCE.get(tv, "unknown")
+            if n in loads:
+                fr.info["load"] = dict(loads[n])
+            return
+        fr.reference = BASE_REFERENCE.get(tv, "unknown")
+        mach = mframes.get(n)
+        if mach and mach["index"] and fr.reference == "world":
+            fr.reference = "machine"
+            fr.info["machine"] = dict(mach)
+            if mach["index"] in machines:
+                fr.info["machine"]["definition"] = machines[mach["index"]]
+        if fr.reference != "world":
+            where = {"machine": f"external kinematic {mach and (mach['parent'] or mach['index'])}"
+                                f" (MACHINE_FRAME_DAT[{n}].MACH_DEF_INDEX "
+                                f"{mach and mach['index']})",
+                     "flange": "the flange"}.get(fr.reference, "an unknown frame")
+            self.lint(self._line_offset(fr), "base-not-world",
+                      f"{fr.name} is relative to {where}, not to world")
+
+    def _line_offset(self, fr: Frame) -> int:
+        return self.doc.line_starts[fr.line - 1]
+
+    def duplicate_names(self) -> None:
+        by_name: dict[str, list[Frame]] = {}
+        for fr in self.cf.frames:
+            for n in {fr.name.casefold(), *([fr.label.casefold()] if fr.label else [])}:
+                by_name.setdefault(n, []).append(fr)
+        for key, frs in by_name.items():
+            labelled = [f for f in frs if f.label and f.label.casefold() == key]
+            if len(frs) < 2 or not labelled:
+                continue
+            later = frs[-1]
+            pos = later.info.get("label_offset", self._line_offset(later))
+            which = " and ".join(f.name for f in frs)
+            shown = labelled[0].label
+            self.lint(pos, "duplicate-label",
+                      f"label {shown!r} names {which}: refer to them by entry name")
+        for fr in self.cf.frames:
+            fr.info.pop("label_offset", None)
+
+
+def _mods_info(mods) -> dict:
+    info = {}
+    if "GLOBAL" in mods:
+        info["global"] = True
+    if "CONST" in mods:
+        info["const"] = True
+    return info
+
+
+def _load(v: _Val) -> dict:
+    """LOAD {M m,CM {X..C},J {X,Y,Z}} as a plain dict; M -1 means 'not set'."""
+    f = v.value
+    out: dict[str, Any] = {}
+    m = f.get("M")
+    mass = m[1].value if m and m[1].kind == "number" else None
+    out["m"] = None if mass is None or mass < 0 else mass
+    out["load_set"] = mass is not None and mass >= 0
+    for key, comps in (("CM", COMPONENTS), ("J", ("x", "y", "z"))):
+        sub = f.get(key)
+        if sub and sub[1].kind == "struct":
+            sv = sub[1].value
+            out[key.lower()] = {c: (sv[c.upper()][1].value if c.upper() in sv
+                                    and sv[c.upper()][1].kind == "number" else None)
+                                for c in comps}
+    return out
