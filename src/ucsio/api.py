@@ -1,0 +1,169 @@
+"""The Python API: what the commands do, as plain functions.
+
+    from ucsio import api
+    cell = api.load("R01/$config.dat")                    # ControllerFile
+    api.frames("R01/$config.dat")                         # [Frame, ...]
+    sol = api.solve("points.csv", tcp=(-20.67, 89.73, 33.44))
+    d = api.diff_frame("R01/$config.dat", "BASE_DATA[3]", sol)       # SPEC's diff keys
+    changes = api.diff_files("old/$config.dat", "new/$config.dat")  # changed/added/removed
+    result = api.patch("R01/$config.dat", "BASE_DATA[3]", sol)     # nothing written yet
+    print(result.diff)                                    # unified diff of the patch
+    api.save(result)                                      # atomic, in place (or path=OUT)
+
+Errors are ``ucsio.UcsioError`` (what the command line reports with exit 2).
+A ``solution`` argument may be a ``Pose``, a solve result (anything with a
+``.pose``), or the path of a SOLUTION.json written by ``ucsio solve -o``.
+"""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any
+
+from .controller import ControllerFile
+from .controller import load as _load
+from .diff import DEFAULT_TOLERANCE
+from .errors import UcsioError
+from .frames import Frame, Pose
+from .patch import PatchResult
+
+PathLike = str | os.PathLike
+
+
+def load(path: PathLike) -> ControllerFile:
+    """Parse a controller file (ABB RAPID module or KUKA KRL data list)."""
+    return _load(path)
+
+
+def _cell(file: PathLike | ControllerFile) -> ControllerFile:
+    return file if isinstance(file, ControllerFile) else _load(file)
+
+
+def frames(path: PathLike | ControllerFile) -> list[Frame]:
+    """Every frame of a controller file (``ucsio frames``)."""
+    return list(_cell(path).frames)
+
+
+def frame(path: PathLike | ControllerFile, name: str) -> Frame:
+    """One frame by name (case-insensitive; KUKA labels too); ambiguous or
+    unknown names raise UcsioError."""
+    return _cell(path).frame(name)
+
+
+def solve(csv: PathLike, tcp=(0.0, 0.0, 0.0), **options):
+    """Solve a measurement file (``ucsio solve``): returns the solver's
+    Solution (``.pose``, ``.accepted``, ``.points``, ``.rms``, ``.as_dict()``).
+    ``options``: threshold, min_points, exclude, no_exclusion."""
+    from .measurement import read_measurement
+    from .solve import solve as _solve
+    return _solve(read_measurement(csv), tcp, **options)
+
+
+def read_solution(path: PathLike, allow_rejected: bool = False) -> Pose:
+    """The frame of a SOLUTION.json (``{"frame": {x, y, z, a, b, c, q}}``) or
+    of a bare ``{x, y, z, a, b, c | q}`` object. A rejected dataset's
+    solution is refused unless ``allow_rejected``."""
+    try:
+        from .solve import load_solution
+    except ImportError:  # pragma: no cover - the solver ships with ucsio
+        return _read_solution(path, allow_rejected)
+    return load_solution(path, allow_rejected=allow_rejected)
+
+
+def _read_solution(path: PathLike, allow_rejected: bool = False) -> Pose:
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8-sig") as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
+    except json.JSONDecodeError as exc:
+        raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno) from None
+    if not isinstance(data, dict):
+        raise UcsioError("expected a JSON object", file=path)
+    if data.get("accepted") is False and not allow_rejected:
+        raise UcsioError("this solution's dataset was rejected: measure again", file=path)
+    f = data.get("frame", data)
+    try:
+        x, y, z = (float(f[k]) for k in "xyz")
+        if f.get("q") is not None:
+            return Pose.from_quat(x, y, z, [float(c) for c in f["q"]])
+        return Pose.from_abc(x, y, z, *(float(f[k]) for k in "abc"))
+    except (KeyError, TypeError, ValueError):
+        raise UcsioError("frame needs x, y, z and a, b, c or q", file=path) from None
+
+
+def as_pose(solution: Any) -> Pose:
+    """A Pose from a Pose, a solve result (``.pose``), a SOLUTION.json path,
+    or a mapping with x, y, z and a, b, c or q."""
+    if isinstance(solution, Pose):
+        return solution
+    if hasattr(solution, "pose") and isinstance(solution.pose, Pose):
+        if getattr(solution, "accepted", True) is False:
+            raise UcsioError("this solution's dataset was rejected: measure again")
+        return solution.pose
+    if isinstance(solution, (str, os.PathLike)):
+        return read_solution(solution)
+    if isinstance(solution, dict):
+        f = solution.get("frame", solution)
+        if f.get("q") is not None:
+            return Pose.from_quat(f["x"], f["y"], f["z"], f["q"])
+        return Pose.from_abc(f["x"], f["y"], f["z"], f["a"], f["b"], f["c"])
+    raise TypeError(f"not a pose or solution: {solution!r}")
+
+
+def diff_frame(file: PathLike | ControllerFile, name: str, solution: Any,
+               tolerance: float = DEFAULT_TOLERANCE, oframe: bool = False) -> dict[str, Any]:
+    """SPEC's one-frame diff (``ucsio diff FILE --frame NAME --measured``):
+    name, simulated, measured, dx dy dz da db dc angle dist dt_mean, group, pass."""
+    from .review import diff_frame as _diff_frame
+    return _diff_frame(_cell(file), name, as_pose(solution), tolerance, oframe=oframe)
+
+
+def diff_files(old: PathLike | ControllerFile | None,
+               new: PathLike | ControllerFile | None) -> dict[str, Any]:
+    """Every frame of two files matched by name (``ucsio diff OLD NEW``):
+    ``changed``, ``added``, ``removed``, ``unchanged`` (a count). ``None``
+    for a file that does not exist."""
+    from .review import diff_files as _diff_files
+    return _diff_files(None if old is None else _cell(old), None if new is None else _cell(new))
+
+
+def patch(file: PathLike | ControllerFile, name: str, solution: Any, *,
+          measured: bool | None = None, force: bool = False, oframe: bool = False,
+          check_siblings: bool = True) -> PatchResult:
+    """Plan writing ``solution`` into frame ``name`` (``ucsio patch``). Nothing
+    is written: the result has ``new_bytes``, ``diff`` (unified diff text),
+    ``changes`` and ``changed``; pass it to ``save``.
+
+    ``measured`` (default: True unless ``solution`` is a Pose) makes the
+    frame's reference matter: a measured frame is in robot world."""
+    from .patch import patch_frame
+    if measured is None:
+        measured = not isinstance(solution, Pose)
+    return patch_frame(_cell(file), name, as_pose(solution), measured=measured, force=force,
+                       oframe=oframe, check_siblings=check_siblings)
+
+
+def save(result: PatchResult, path: PathLike | None = None, backup: bool = False) -> str:
+    """Write a planned patch atomically: over the source file (``path`` None)
+    or to ``path``; ``backup`` keeps FILE.bak. Refused if the source changed
+    on disk since it was read. Returns the path written."""
+    from .patch import save as _save
+    return _save(result, path, backup=backup)
+
+
+def textconv(file: PathLike | ControllerFile) -> str:
+    """One stable line per frame (``ucsio diff --textconv``)."""
+    from .review import textconv as _textconv
+    return _textconv(_cell(file))
+
+
+def demo(out: PathLike | None = None) -> dict[str, Any]:
+    """The shipped example cells end to end (``ucsio demo --json``)."""
+    from .demo import run_demo
+    return run_demo(out=out)
+
+
+__all__ = ["load", "frames", "frame", "solve", "read_solution", "as_pose", "diff_frame",
+           "diff_files", "patch", "save", "textconv", "demo", "PatchResult"]

@@ -1,0 +1,82 @@
+"""The whole job on the example cells shipped with ucsio (a KUKA $config.dat and
+an ABB RAPID module, each with a laser-tracker measurement holding one
+blunder): solve, diff against the simulated frame, preview the patch. Nothing
+is written unless --out DIR is given (patched copies go there; the shipped
+files are never changed)."""
+from __future__ import annotations
+
+from ..output import emit_json, fmt, table
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--out", metavar="DIR", help="write the patched controller files into DIR")
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="dt_mean below this passes (default 100 mm)")
+
+
+def run(args) -> int:
+    from ..demo import run_demo
+
+    result = run_demo(out=args.out, tolerance=args.tolerance)
+    if args.json:
+        emit_json(result)
+        return 0
+    for k, cell in enumerate(result["cells"]):
+        if k:
+            print()
+        print_cell(cell)
+    print()
+    verdict = "every cell passes" if result["ok"] else "a cell failed its gate"
+    print(f"demo: {len(result['cells'])} cells, {verdict}.")
+    if result["out"]:
+        print(f"patched copies written under {result['out']}")
+    else:
+        print("nothing written (ucsio demo --out DIR writes the patched copies)")
+    return 0
+
+
+def print_cell(cell: dict) -> None:
+    s = cell["solve"]
+    d = cell["diff"]
+    label = f" \"{cell['label']}\"" if cell.get("label") else ""
+    rule = "=" * 78
+    print(rule)
+    print(f"cell {cell['cell']} ({cell['vendor'].upper()}): {cell['story']}")
+    print(rule)
+    print(f"controller   {cell['controller']}   frame {cell['frame']}{label}")
+    tool = cell["tool"]
+    tl = f" \"{tool['label']}\"" if tool.get("label") else ""
+    print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: "
+          + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
+    print()
+    print("1. solve (Horn's method, leave-one-out outlier exclusion)")
+    rows = []
+    for p in s["points"]:
+        loo = p["loo_residual"]
+        used = "yes" if p["used"] else f"EXCLUDED ({p.get('excluded_by') or 'auto'})"
+        rows.append([p["name"], fmt(p["residual"]), fmt(loo), used])
+    print(indent(table(["point", "residual", "leave-one-out", "used"], rows, right={1, 2})))
+    threshold = s.get("settings", {}).get("threshold", 1.5)
+    print(f"   {s['n_used']} of {s['n_points']} points used, rms {s['rms']:.3f} mm, "
+          f"max {s['max']:.3f} mm (threshold {threshold:g} mm): "
+          + ("accepted" if s["accepted"] else "REJECTED: measure again"))
+    print()
+    print("2. diff: measured - simulated")
+    sim, mea = d["simulated"], d["measured"]
+    rows = [["simulated", *(fmt(sim[k]) for k in "xyz"), *(fmt(sim[k], 4) for k in "abc")],
+            ["measured", *(fmt(mea[k]) for k in "xyz"), *(fmt(mea[k], 4) for k in "abc")],
+            ["delta", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
+             *(f"{d[k]:+.4f}" for k in ("da", "db", "dc"))]]
+    print(indent(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6})))
+    print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
+          f"group {d['group']}, {'PASS' if d['pass'] else 'FAIL'} "
+          f"(tolerance {d.get('tolerance', 100.0):g} mm)")
+    print()
+    print("3. patch preview (only the frame's numbers change)")
+    print(indent(cell["patch"]["diff"].rstrip("\n")))
+    if cell["patch"]["written"]:
+        print(f"   written: {cell['patch']['written']}")
+
+
+def indent(text: str, pad: str = "   ") -> str:
+    return "\n".join(pad + line if line else line for line in text.split("\n"))

@@ -1,0 +1,114 @@
+"""Frame differences, in four forms:
+
+  ucsio diff FILE --frame NAME --measured SOLUTION.json [--tolerance T]
+      the simulated frame in FILE against the measured one: dx dy dz da db dc
+      angle dist dt_mean, group, pass. Exit 1 when dt_mean is not below the
+      tolerance (default 100 mm).
+  ucsio diff OLD NEW
+      every frame of two controller files matched by name: changed, added,
+      removed. Differences below float32 precision count as unchanged. Exit 0
+      whether or not frames changed (as git's external diff expects).
+  ucsio diff --textconv FILE
+      one stable line per frame, for git's diff.<driver>.textconv.
+  ucsio diff PATH OLD-FILE OLD-HEX OLD-MODE NEW-FILE NEW-HEX NEW-MODE
+      the seven arguments git passes to an external diff driver
+      (GIT_EXTERNAL_DIFF, or diff.<driver>.command); /dev/null for an added
+      or removed file. Always exit 0.
+
+Git setup for a folder of controller backups:
+  git config diff.ucsio.command "ucsio diff"          (or textconv: "ucsio diff --textconv")
+  echo '*.mod diff=ucsio' >> .gitattributes; likewise *.sys *.dat ..."""
+from __future__ import annotations
+
+import sys
+
+from ..output import emit_json, fmt, table
+
+
+def add_arguments(p) -> None:
+    import argparse
+    p.formatter_class = argparse.RawDescriptionHelpFormatter   # keep the forms on their lines
+    p.add_argument("files", nargs="*", metavar="FILE",
+                   help="FILE (with --frame), OLD NEW, or git's seven arguments")
+    p.add_argument("--frame", metavar="NAME", help="the frame to compare with --measured")
+    p.add_argument("--measured", metavar="SOLUTION.json", help="written by `ucsio solve -o`")
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="dt_mean below this passes (default 100 mm)")
+    p.add_argument("--oframe", action="store_true", help="ABB: the object frame of the wobj")
+    p.add_argument("--textconv", action="store_true",
+                   help="print FILE's frames one per line (git diff.<driver>.textconv)")
+
+
+def run(args) -> int:
+    from ..errors import UcsioError
+
+    files = args.files
+    if args.textconv:
+        if len(files) != 1 or args.frame or args.measured:
+            raise UcsioError("--textconv takes exactly one FILE")
+        from ..review import textconv_file
+        sys.stdout.write(textconv_file(files[0]))
+        return 0
+    if args.frame or args.measured:
+        if not (args.frame and args.measured) or len(files) != 1:
+            raise UcsioError("usage: ucsio diff FILE --frame NAME --measured SOLUTION.json")
+        return _one_frame(args)
+    if args.tolerance is not None or args.oframe:
+        raise UcsioError("--tolerance and --oframe go with --frame and --measured")
+    if len(files) == 7:
+        return _git(args)
+    if len(files) != 2:
+        raise UcsioError("usage: ucsio diff OLD NEW | ucsio diff FILE --frame NAME "
+                         "--measured SOLUTION.json | ucsio diff --textconv FILE")
+    from ..controller import load
+    from ..review import diff_files, format_files_diff
+    old, new = load(files[0]), load(files[1])
+    result = diff_files(old, new)
+    if args.json:
+        emit_json(result)
+    else:
+        sys.stdout.write(format_files_diff(result, files[0], files[1]))
+    return 0
+
+
+def _git(args) -> int:
+    from ..review import git_diff
+    path, old_file, _oh, _om, new_file, _nh, _nm = args.files
+    text, result = git_diff(path, old_file, new_file)
+    if args.json:
+        emit_json(result if result is not None else {"path": path, "error": text})
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _one_frame(args) -> int:
+    from ..api import read_solution
+    from ..controller import load
+    from ..diff import DEFAULT_TOLERANCE
+    from ..review import diff_frame
+
+    tol = DEFAULT_TOLERANCE if args.tolerance is None else args.tolerance
+    if not tol > 0:
+        from ..errors import UcsioError
+        raise UcsioError(f"--tolerance must be positive, got {args.tolerance}")
+    measured = read_solution(args.measured)
+    cf = load(args.files[0])
+    d = diff_frame(cf, args.frame, measured, tol, oframe=args.oframe)
+    if args.json:
+        emit_json(d)
+        return 0 if d["pass"] else 1
+    if "warning" in d:
+        print(f"ucsio: warning: {d['warning']}", file=sys.stderr)
+    s, m = d["simulated"], d["measured"]
+    rows = [["simulated", *(fmt(s[k]) for k in "xyz"), *(fmt(s[k], 4) for k in "abc")],
+            ["measured", *(fmt(m[k]) for k in "xyz"), *(fmt(m[k], 4) for k in "abc")],
+            ["Δ", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
+             *(f"{d[k]:+.4f}" for k in ("da", "db", "dc"))]]
+    label = f" ({d['label']})" if d.get("label") else ""
+    print(f"{d['name']}{label}  {d['type']}  {d['file']}:{d['line']}")
+    print(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6}))
+    verdict = "PASS" if d["pass"] else "FAIL"
+    print(f"angle {d['angle']:.4f} deg  dist {d['dist']:.3f} mm  dt_mean {d['dt_mean']:.3f} mm  "
+          f"group {d['group']}  {verdict} (tolerance {tol:g} mm)")
+    return 0 if d["pass"] else 1

@@ -1,0 +1,93 @@
+"""Write a frame back into a controller file, in the vendor's native form
+(ABB quaternion, KUKA A, B, C), changing only that frame's numbers.
+
+Without -o or --in-place the unified diff of the patch is printed and nothing
+is written (exit 0). Refused with exit 2, nothing written: an unknown or
+ambiguous name, a frame with no literal value, a moving user frame (ufprog
+FALSE), a measured (world) solution for a frame that is not relative to world
+(a robot-held tool, KUKA BASE_TYPE #TCP or a base on an external kinematic,
+an ABB wobj with robhold TRUE, an oframe under a non-identity uframe) or a
+RAPID PERS that another module in the same folder also declares (RAPID shares
+it; --force overrides these two), a rejected solution, and a file that changed
+on disk since it was read. --set and --set-q take the values as given, in the
+frame's own reference; write negative first values as --set=-5,1,2,0,0,0."""
+from __future__ import annotations
+
+import sys
+
+from ..output import emit_json
+
+
+def add_arguments(p) -> None:
+    p.add_argument("file", metavar="FILE", help="RAPID module or KRL .dat file")
+    p.add_argument("--frame", required=True, metavar="NAME",
+                   help="frame to patch (wobj1, wobj1.oframe, tool1, BASE_DATA[3] or its label)")
+    src = p.add_mutually_exclusive_group(required=True)
+    src.add_argument("--measured", metavar="SOLUTION.json",
+                     help="the solution written by `ucsio solve -o` (the UCS in robot world)")
+    src.add_argument("--set", metavar="X,Y,Z,A,B,C", help="values in mm and degrees (KUKA A, B, C)")
+    src.add_argument("--set-q", metavar="X,Y,Z,Q1,Q2,Q3,Q4", help="values in mm and an ABB quaternion")
+    p.add_argument("--oframe", action="store_true", help="ABB: patch the object frame of the wobj")
+    p.add_argument("--force", action="store_true",
+                   help="write despite a reference mismatch, a shared PERS, or a rejected solution")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("-o", "--output", metavar="OUT", help="write the patched file here")
+    out.add_argument("--in-place", action="store_true", help="overwrite FILE (atomically)")
+    p.add_argument("--backup", action="store_true", help="with --in-place: keep FILE.bak")
+
+
+def parse_values(text: str, n: int, option: str):
+    from ..errors import UcsioError
+    parts = [s for s in text.replace(";", ",").split(",")]
+    try:
+        values = [float(s) for s in parts]
+    except ValueError:
+        raise UcsioError(f"{option} {text!r}: expected {n} numbers separated by commas") from None
+    if len(values) != n or not all(v == v and abs(v) != float("inf") for v in values):
+        raise UcsioError(f"{option} {text!r}: expected {n} finite numbers separated by commas")
+    return values
+
+
+def target_pose(args):
+    """The pose to write, and whether it is a measured (world) solution."""
+    from ..frames import Pose
+    if args.measured:
+        from ..api import read_solution
+        return read_solution(args.measured, allow_rejected=args.force), True
+    if args.set:
+        return Pose.from_abc(*parse_values(args.set, 6, "--set")), False
+    x, y, z, *q = parse_values(args.set_q, 7, "--set-q")
+    if sum(c * c for c in q) == 0:
+        from ..errors import UcsioError
+        raise UcsioError("--set-q: the quaternion is all zeros")
+    return Pose.from_quat(x, y, z, q), False
+
+
+def run(args) -> int:
+    from ..controller import load
+    from ..errors import UcsioError
+    from ..patch import patch_frame, save
+
+    if args.backup and not args.in_place:
+        raise UcsioError("--backup goes with --in-place")
+    pose, measured = target_pose(args)
+    cf = load(args.file)
+    result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,
+                         oframe=args.oframe)
+    if args.in_place or args.output:
+        if result.changed or args.output:
+            save(result, args.output, backup=args.backup)
+    for w in result.warnings:
+        print(f"ucsio: warning: {w}", file=sys.stderr)
+    if args.json:
+        emit_json({"patch": result.as_dict()})
+        return 0
+    if not result.changed:
+        print(f"{result.path}: {result.frame.name} already has these values "
+              "at the written precision; nothing to change")
+    else:
+        sys.stdout.write(result.diff)
+    if result.written:
+        extra = f" (backup {result.backup})" if result.backup else ""
+        print(f"wrote {result.written}{extra}", file=sys.stderr)
+    return 0

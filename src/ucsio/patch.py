@@ -1,0 +1,559 @@
+"""Write a frame back into its controller file, touching nothing else.
+
+``plan(frame, pose)`` turns a target pose into edits of exactly the frame's
+value spans (``Frame.numbers``), in the vendor's native form:
+
+- ABB (``wobjdata`` uframe/oframe, ``tooldata`` tframe, ``pose``): x, y, z and
+  the quaternion q1..q4. Translations to 0.001 mm; quaternion components to 6
+  decimals, normalised *after* rounding: the components that moved are nudged
+  by at most a few 1e-6 so that the text, parsed back, has |sum q^2 - 1| <=
+  1e-6 (FORMATS.md 1.6). The sign of the quaternion is chosen on the old
+  value's side (positive dot product), so the diff stays small.
+- KUKA (``BASE_DATA``, ``TOOL_DATA``, ``FRAME``): X, Y, Z to 0.001 mm and A, B,
+  C to 0.0001 deg; REAL always with a decimal point.
+
+A component whose value does not change at the written precision keeps its
+original text, so the diff shows only what moved and patching a file with the
+values it already has changes no byte. New text keeps the old text's number
+of decimals where that is within the precision (``-180.000`` stays a
+three-decimal column), strips other trailing zeros, and never writes ``-0``.
+
+``patch_frame`` adds the refusals (unknown or ambiguous name, no value, a
+moving user frame, a reference the measured solution does not mean, a shared
+RAPID PERS declared in a sibling module) and a read-back check: the new bytes
+are parsed again and must give the target pose within the written precision,
+with every byte outside the edited spans unchanged.
+
+``save`` writes atomically: a temporary file in the target's folder, fsync,
+``os.replace``; the original's permissions kept; refused (nothing written, no
+temporary file left) if the source file changed on disk since it was read.
+"""
+from __future__ import annotations
+
+import difflib
+import itertools
+import math
+import os
+import struct
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from . import rotations as rot
+from .controller import ABB_SUFFIXES, ControllerFile, parse
+from .document import Document, Edit
+from .errors import UcsioError
+from .frames import Frame, Number, Pose
+
+# Written precision (decimals) and half a step: what "unchanged" means.
+TRANS_DECIMALS = 3
+ANGLE_DECIMALS = 4
+QUAT_DECIMALS = 6
+QUAT_NORM_MAX = 1e-6          # |sum q^2 - 1| of the written text (FORMATS 1.6)
+# Read-back tolerances (a little over half a step, and the rotation those give).
+READBACK_TRANS = 0.5 * 10.0 ** -TRANS_DECIMALS + 1e-9
+READBACK_ANGLE_DEG = 5e-4
+
+ABB_KEYS = ("x", "y", "z", "q1", "q2", "q3", "q4")
+KUKA_KEYS = ("x", "y", "z", "a", "b", "c")
+
+
+# ----------------------------------------------------------------- numbers
+
+def _decimals_of(text: str | None) -> int:
+    """Decimals of a zero-padded decimal literal, i.e. a column style
+    ('-180.000' -> 3, '2087.50' -> 2); 0 for '-61.6146', '5', '1E-05'."""
+    if not text:
+        return 0
+    t = text.strip().lstrip("+-").strip()
+    if "e" in t.lower() or "." not in t or not t.endswith("0"):
+        return 0
+    return len(t.split(".", 1)[1])
+
+
+def format_number(value: float, decimals: int, *, point: bool = False,
+                  old_text: str | None = None) -> str:
+    """``value`` rounded to ``decimals``, trailing zeros stripped down to the
+    old text's decimals (capped at ``decimals``); ``point``: always keep a
+    decimal point (KUKA REAL). Never ``-0``, never an exponent."""
+    if not math.isfinite(value):
+        raise UcsioError(f"cannot write a non-finite number ({value})")
+    keep = min(_decimals_of(old_text), decimals)
+    if point:
+        keep = max(keep, 1)
+    s = f"{value:.{decimals}f}"
+    if float(s) == 0.0:
+        s = s.lstrip("-")
+    if "." in s:
+        whole, frac = s.split(".")
+        frac = frac.rstrip("0")
+        if len(frac) < keep:
+            frac = frac + "0" * (keep - len(frac))
+        s = whole + ("." + frac if frac else "")
+    return s
+
+
+def _parse_text(text: str) -> float:
+    return float(text.replace(" ", "").replace("\t", ""))
+
+
+def f32(v: float) -> float:
+    """``v`` rounded through IEEE single precision (RAPID num, KRL REAL)."""
+    try:
+        return struct.unpack("f", struct.pack("f", v))[0]
+    except OverflowError:
+        return v
+
+
+# ----------------------------------------------------------------- planning
+
+@dataclass(frozen=True)
+class Change:
+    component: str
+    old: str
+    new: str
+    old_value: float
+    new_value: float
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"component": self.component, "old": self.old, "new": self.new,
+                "old_value": self.old_value, "new_value": self.new_value}
+
+
+def _column(nums: list[Number], decimals: int) -> str | None:
+    """The zero-padded style of a group of numbers ('100.000' among them:
+    three decimals), as an example text for ``format_number``."""
+    d = min(max((_decimals_of(n.text) for n in nums), default=0), decimals)
+    return "0." + "0" * d if d else None
+
+
+def _translation_changes(frame: Frame, pose: Pose, point: bool) -> list[Change]:
+    out = []
+    half = 0.5 * 10.0 ** -TRANS_DECIMALS
+    style = _column([frame.numbers[k] for k in "xyz"], TRANS_DECIMALS)
+    for key, v in zip("xyz", pose.t):
+        n = frame.numbers[key]
+        if abs(v - n.value) <= half:
+            continue
+        text = format_number(v, TRANS_DECIMALS, point=point, old_text=style)
+        if _parse_text(text) == n.value:
+            continue
+        out.append(Change(key, n.text, text, n.value, _parse_text(text)))
+    return out
+
+
+# Nudges (in units of the last written decimal) tried on the rewritten
+# quaternion components, fewest first.
+_NUDGES = {n: sorted(itertools.product((0, -1, 1, -2, 2), repeat=n),
+                     key=lambda ks: (sum(map(abs, ks)), [abs(k) for k in ks]))
+           for n in range(5)}
+
+
+def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
+    nums = [frame.numbers[k] for k in ("q1", "q2", "q3", "q4")]
+    old = [n.value for n in nums]
+    q = list(pose.q)
+    if sum(a * b for a, b in zip(old, q)) < 0:
+        q = [-c for c in q]
+    half = 0.5 * 10.0 ** -QUAT_DECIMALS
+    norm = math.sqrt(sum(c * c for c in old))
+    if norm > 0:
+        old_unit = [c / norm for c in old]
+        if all(abs(a - b) <= half for a, b in zip(q, old_unit)):
+            return []          # the same orientation at the written precision
+    step = 10.0 ** -QUAT_DECIMALS
+    style = _column(nums, QUAT_DECIMALS)
+
+    def attempt(keep: list[bool]):
+        base = [old[i] if keep[i] else round(q[i], QUAT_DECIMALS) for i in range(4)]
+        free = [i for i in range(4) if not keep[i]]
+        best = None
+        for ks in _NUDGES[len(free)]:
+            vals = list(base)
+            for i, k in zip(free, ks):
+                vals[i] = round(base[i] + k * step, QUAT_DECIMALS)
+            err = abs(sum(c * c for c in vals) - 1.0)
+            if best is None or err < best[0]:
+                best = (err, vals)
+            if err <= 0.5 * QUAT_NORM_MAX:      # the fewest nudges that fit with margin
+                break
+        vals = best[1]
+        texts = [nums[i].text if keep[i] else
+                 format_number(vals[i], QUAT_DECIMALS, old_text=style) for i in range(4)]
+        parsed = [_parse_text(t) for t in texts]
+        if abs(sum(c * c for c in parsed) - 1.0) > QUAT_NORM_MAX:
+            return None
+        return texts, parsed
+
+    keep = [abs(q[i] - old[i]) <= half for i in range(4)]
+    result = attempt(keep) if any(keep) else None
+    if result is None:
+        keep = [False] * 4
+        result = attempt(keep)
+    if result is None:  # pragma: no cover - rounding a unit quaternion always fits
+        raise UcsioError(f"{frame.name}: cannot write a normalised quaternion", file=frame.file)
+    texts, parsed = result
+    return [Change(f"q{i + 1}", nums[i].text, texts[i], nums[i].value, parsed[i])
+            for i in range(4) if not keep[i] and texts[i] != nums[i].text]
+
+
+def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
+    nums = [frame.numbers[k] for k in ("a", "b", "c")]
+    old = [n.value for n in nums]
+    half = 0.5 * 10.0 ** -ANGLE_DECIMALS
+    try:
+        old_q = rot.abc_to_quat(*old)
+        if rot.quat_angle(old_q, pose.q) <= half * 0.5:
+            return []          # the same orientation (also across a gimbal-lock split)
+    except ValueError:
+        pass
+    out = []
+    style = _column(nums, ANGLE_DECIMALS)
+    for key, n, v in zip("abc", nums, pose.abc):
+        if abs(rot.wrap180(v - n.value)) <= half:
+            continue
+        text = format_number(v, ANGLE_DECIMALS, point=True, old_text=style)
+        if key in "ac" and _parse_text(text) == -180.0:
+            text = format_number(180.0, ANGLE_DECIMALS, point=True, old_text=style)
+        out.append(Change(key, n.text, text, n.value, _parse_text(text)))
+    return out
+
+
+def native_keys(frame: Frame) -> tuple[str, ...]:
+    return ABB_KEYS if frame.vendor == "abb" else KUKA_KEYS
+
+
+def plan(frame: Frame, pose: Pose) -> list[Change]:
+    """The component changes that write ``pose`` into ``frame`` natively."""
+    missing = [k for k in native_keys(frame) if k not in frame.numbers]
+    if missing:
+        raise UcsioError(f"{frame.name}: no literal value for {', '.join(missing).upper()} "
+                         "(nothing to replace; ucsio does not insert components)",
+                         file=frame.file, line=frame.line)
+    if frame.vendor == "abb":
+        return _translation_changes(frame, pose, point=False) + _quat_changes(frame, pose)
+    return _translation_changes(frame, pose, point=True) + _angle_changes(frame, pose)
+
+
+def edits_for(frame: Frame, changes: list[Change]) -> list[Edit]:
+    return [Edit(frame.numbers[c.component].span, c.new) for c in changes]
+
+
+# ----------------------------------------------------------------- refusals
+
+def resolve_name(name: str, oframe: bool) -> str:
+    if oframe and not name.casefold().endswith(".oframe"):
+        return name + ".oframe"
+    return name
+
+
+def _identity(p: Pose | None) -> bool:
+    return (p is not None and all(abs(v) <= 5e-4 for v in p.t)
+            and rot.quat_angle(p.q, (1.0, 0.0, 0.0, 0.0)) <= 1e-4)
+
+
+def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
+    """Why a measured solution (the UCS in robot world) does not fit this
+    frame's reference, or None when it does."""
+    ref = frame.reference
+    if frame.vendor == "kuka" and frame.type == "BASE_DATA" and \
+            str(frame.info.get("base_type") or "").upper() == "#TCP":
+        # Read as "robot-held workpiece, relative to the flange" (FORMATS 2.7)
+        # or as an external TCP (krl.py's reading of the corpus): either way
+        # not a plain base, so a measured UCS does not belong there unasked.
+        return ("BASE_TYPE #TCP: not a plain base (a robot-held workpiece, or an "
+                "external TCP): a measured fixture frame does not belong here")
+    if ref == "world":
+        return None
+    if frame.vendor == "abb" and frame.info.get("component") == "oframe":
+        base = frame.name[: -len(".oframe")]
+        try:
+            uframe = cf.frame(base)
+        except UcsioError:
+            uframe = None
+        if uframe is not None and uframe.reference == "world" and _identity(uframe.pose):
+            return None
+        return ("the object frame is relative to the user frame, which is not the identity; "
+                "a measured frame is in robot world (patch the user frame instead)")
+    if ref == "flange":
+        if frame.vendor == "kuka" and frame.type == "BASE_DATA":
+            return "this base is held by the robot (relative to the flange)"
+        return "this tool is held by the robot: its frame is relative to the flange, not world"
+    if ref == "machine":
+        return "this base is on an external kinematic (MACHINE_FRAME_DAT): not relative to world"
+    if ref == "wrist":
+        return "robhold TRUE: the robot holds this work object (stationary tool); " \
+               "its user frame is relative to the wrist"
+    return f"this frame is relative to {ref!r}, not robot world"
+
+
+def shared_declarations(frame: Frame, warnings: list[str] | None = None) -> list[dict]:
+    """Other modules in the same folder that declare the same RAPID PERS."""
+    storage = str(frame.info.get("storage") or "").upper()
+    if frame.vendor != "abb" or "PERS" not in storage.split() or "LOCAL" in storage.split():
+        return []
+    here = Path(frame.file)
+    try:
+        siblings = sorted(p for p in here.parent.iterdir()
+                          if p.suffix.lower() in ABB_SUFFIXES and p.is_file())
+    except OSError:
+        return []
+    from .controller import load
+    found = []
+    key = frame.name.casefold()
+    for p in siblings:
+        try:
+            if p.resolve() == here.resolve():
+                continue
+        except OSError:
+            continue
+        try:
+            other = load(p)
+        except UcsioError as exc:
+            if warnings is not None:
+                warnings.append(f"could not read sibling module {p.name} ({exc.message}); "
+                                "it may declare the same PERS")
+            continue
+        for f in other.frames:
+            if f.name.casefold() == key and f.type == frame.type:
+                same = poses_equal(frame.pose, f.pose)
+                found.append({"file": str(p), "line": f.line, "same_value": same})
+    return found
+
+
+def poses_equal(a: Pose | None, b: Pose | None) -> bool:
+    """Equal at the controllers' float32 precision."""
+    if a is None or b is None:
+        return a is None and b is None
+    for u, v in zip(a.t, b.t):
+        if not _close32(u, v):
+            return False
+    return rot.quat_angle(a.q, b.q) <= 2e-5
+
+
+F32_EPS = 2.0 ** -23
+
+
+def _close32(u: float, v: float) -> bool:
+    """Equal as the controller stores them (RAPID num, KRL REAL: float32):
+    the same single-precision value, or within two units of its last place."""
+    return f32(u) == f32(v) or abs(u - v) <= 2 * F32_EPS * max(1.0, abs(u), abs(v))
+
+
+# ----------------------------------------------------------------- patching
+
+@dataclass
+class PatchResult:
+    """A planned patch: the new bytes and what changed. Nothing is written
+    until ``save``."""
+
+    path: str
+    frame: Frame
+    pose: Pose
+    document: Document
+    new_bytes: bytes
+    changes: list[Change]
+    warnings: list[str] = field(default_factory=list)
+    written: str | None = None
+    backup: str | None = None
+
+    @property
+    def old_bytes(self) -> bytes:
+        return self.document.raw
+
+    @property
+    def changed(self) -> bool:
+        return self.new_bytes != self.document.raw
+
+    @property
+    def diff(self) -> str:
+        return unified_diff(self.document, self.new_bytes, self.path)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"file": self.path, "frame": self.frame.name, "type": self.frame.type,
+                "vendor": self.frame.vendor, "line": self.frame.line,
+                "reference": self.frame.reference,
+                "old": self.frame.pose.as_dict() if self.frame.pose else None,
+                "new": self.pose.as_dict(), "changed": self.changed,
+                "changes": [c.as_dict() for c in self.changes], "diff": self.diff,
+                "warnings": list(self.warnings), "written": self.written,
+                "backup": self.backup}
+
+
+def _lines(text: str) -> list[str]:
+    return [ln.rstrip("\r") for ln in text.split("\n")]
+
+
+def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: int = 1) -> str:
+    new_text = Document(new_bytes, doc.path).text
+    label = (label or doc.path).replace(os.sep, "/").lstrip("/")
+    out = difflib.unified_diff(_lines(doc.text), _lines(new_text), f"a/{label}", f"b/{label}",
+                               n=n, lineterm="")
+    return "\n".join(out) + ("\n" if new_text != doc.text else "")
+
+
+def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,
+                force: bool = False, oframe: bool = False,
+                check_siblings: bool = True) -> PatchResult:
+    """Plan the patch of frame ``name`` in ``cf`` to ``pose``.
+
+    ``measured``: the pose is a measured solution (the UCS in robot world), so
+    the frame's reference must be world unless ``force``. With ``measured``
+    False (``--set``) the values are taken as given in the frame's own
+    reference. Refusals raise UcsioError; nothing is written here."""
+    frame = cf.frame(resolve_name(name, oframe))
+    where = {"file": frame.file, "line": frame.line}
+    if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
+        raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
+                         f"{frame.info.get('ufmec')!r}): the controller sets it; not patchable",
+                         **where)
+    if frame.pose is None or not frame.numbers:
+        raise UcsioError(f"{frame.name}: the file gives no literal value for this frame; "
+                         "nothing to patch", **where)
+    warnings: list[str] = []
+    if measured:
+        why = reference_problem(cf, frame)
+        if why:
+            if not force:
+                raise UcsioError(f"{frame.name}: {why}; refusing to write a measured world "
+                                 "frame (--force to write it anyway)", **where)
+            warnings.append(f"{frame.name}: {why} (written anyway: --force)")
+    if check_siblings:
+        shared = shared_declarations(frame, warnings)
+        if shared:
+            names = "; ".join(f"{Path(s['file']).name}:{s['line']} "
+                              f"({'same value' if s['same_value'] else 'different value'})"
+                              for s in shared)
+            msg = (f"{frame.name}: this PERS is also declared in {names}; RAPID shares one "
+                   "PERS object between modules, so every declaration must be patched")
+            if not force:
+                raise UcsioError(msg + " (--force patches this file only)", **where)
+            warnings.append(msg + " (patched this file only: --force)")
+    changes = plan(frame, pose)
+    doc = cf.document
+    new_bytes = doc.edited_bytes(edits_for(frame, changes))
+    result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
+                         new_bytes=new_bytes, changes=changes, warnings=warnings)
+    verify(result)
+    return result
+
+
+def verify(result: PatchResult) -> None:
+    """Parse the new bytes again: the frame must read back as the target pose
+    within the written precision, and nothing outside its spans may move."""
+    doc = result.document
+    frame = result.frame
+    if not result.changes:
+        if result.new_bytes != doc.raw:  # pragma: no cover - defensive
+            raise UcsioError("internal error: an empty patch changed bytes", file=doc.path)
+        return
+    new_doc = Document(result.new_bytes, doc.path)
+    try:
+        again = parse(new_doc).frame(frame.name)
+    except UcsioError as exc:
+        raise UcsioError(f"internal error: the patched text does not parse back: {exc}",
+                         file=doc.path) from None
+    p = again.pose
+    if p is None:
+        raise UcsioError("internal error: the patched frame has no value", file=doc.path)
+    target = result.pose
+    if (any(abs(a - b) > READBACK_TRANS for a, b in zip(p.t, target.t))
+            or rot.quat_angle(p.q, target.q) > READBACK_ANGLE_DEG):
+        # Only components that were kept (unchanged at the written precision)
+        # may differ, and by at most half a step.
+        raise UcsioError(f"internal error: {frame.name} reads back as {p.as_dict()}, "
+                         f"not {target.as_dict()}", file=doc.path)
+    if frame.vendor == "abb":
+        q = [again.numbers[k].value for k in ("q1", "q2", "q3", "q4")]
+        if any(c.component.startswith("q") for c in result.changes) and \
+                abs(sum(c * c for c in q) - 1.0) > QUAT_NORM_MAX:
+            raise UcsioError("internal error: written quaternion is not normalised",
+                             file=doc.path)
+
+
+# ----------------------------------------------------------------- writing
+
+def _same_on_disk(path: str, doc: Document) -> bool:
+    try:
+        return Path(path).read_bytes() == doc.raw
+    except OSError:
+        return False
+
+
+def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
+                 check=None, owner: tuple[int, int] | None = None) -> None:
+    """Write ``data`` to ``path`` through a temporary file in the same folder,
+    fsync, then ``os.replace``. ``check()`` runs just before the rename and may
+    raise to abort. The temporary file never outlives a failure."""
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise UcsioError("cannot write: the folder does not exist", file=path)
+    try:
+        fd, tmp = tempfile.mkstemp(dir=folder, prefix="." + os.path.basename(path) + ".",
+                                   suffix=".ucsio-tmp")
+    except OSError as exc:
+        raise UcsioError(f"cannot write in this folder: {exc.strerror or exc}", file=path) from None
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        if mode is not None:
+            os.chmod(tmp, mode)
+        if owner is not None and hasattr(os, "chown"):
+            try:
+                os.chown(tmp, *owner)
+            except OSError:
+                pass           # not allowed to give it away: keep ours
+        if check is not None:
+            check()
+        os.replace(tmp, path)
+    except BaseException as exc:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        if isinstance(exc, OSError):
+            raise UcsioError(f"cannot write: {exc.strerror or exc}", file=path) from None
+        raise
+    try:  # make the rename durable
+        dfd = os.open(folder, os.O_RDONLY)
+        try:
+            os.fsync(dfd)
+        finally:
+            os.close(dfd)
+    except OSError:
+        pass
+
+
+def save(result: PatchResult, path: str | os.PathLike | None = None,
+         backup: bool = False) -> str:
+    """Write a planned patch: to ``path`` (``-o OUT``), or over the source file
+    (``--in-place``; ``backup`` keeps FILE.bak). Refused, with nothing written,
+    when the source changed on disk since it was read."""
+    src = result.document.path
+    target = os.fspath(path) if path is not None else src
+    if os.path.islink(target):        # write through a link, never replace it
+        target = os.path.realpath(target)
+
+    def unchanged() -> None:
+        if not _same_on_disk(src, result.document):
+            raise UcsioError("the file changed on disk since it was read; nothing written "
+                             "(run the command again)", file=src)
+
+    unchanged()
+    try:
+        st = os.stat(target if os.path.exists(target) else src)
+        mode, owner = st.st_mode & 0o7777, (st.st_uid, st.st_gid)
+    except OSError:
+        mode = owner = None
+    if backup:
+        bak = target + ".bak"
+        atomic_write(bak, Path(target).read_bytes() if os.path.exists(target) else result.old_bytes,
+                     mode, check=unchanged, owner=owner)
+        result.backup = bak
+    atomic_write(target, result.new_bytes, mode, check=unchanged, owner=owner)
+    result.written = target
+    return target

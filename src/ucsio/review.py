@@ -1,0 +1,249 @@
+"""What a reviewer reads before anything goes to a controller.
+
+- ``diff_frame``: one frame of a file (simulated) against a measured pose,
+  with SPEC's keys (``diff.frame_delta``).
+- ``diff_files``: every frame of two controller files matched by name
+  (case-insensitively): ``changed``, ``added``, ``removed``. Values that are
+  equal at the controllers' float32 precision count as unchanged, and so do
+  q and -q, or two A, B, C splits of the same rotation.
+- ``textconv``: a stable one-line-per-frame listing for git's
+  ``diff.<driver>.textconv``.
+- ``git_diff``: the seven-argument form git passes to an external diff
+  driver (``GIT_EXTERNAL_DIFF`` or ``diff.<driver>.command``).
+"""
+from __future__ import annotations
+
+import difflib
+import os
+from typing import Any
+
+from .controller import ControllerFile, load, parse
+from .diff import DEFAULT_TOLERANCE, frame_delta
+from .document import Document
+from .errors import UcsioError
+from .frames import Frame, Pose
+from .patch import _close32, poses_equal, reference_problem, resolve_name
+
+DEVNULL = os.devnull
+
+
+def diff_frame(cf: ControllerFile, name: str, measured: Pose,
+               tolerance: float = DEFAULT_TOLERANCE, oframe: bool = False) -> dict[str, Any]:
+    """SPEC's one-frame diff: Δ = measured − simulated (the frame in ``cf``)."""
+    frame = cf.frame(resolve_name(name, oframe))
+    if frame.pose is None:
+        raise UcsioError(f"{frame.name}: the file gives no literal value for this frame",
+                         file=frame.file, line=frame.line)
+    d: dict[str, Any] = {"name": frame.name, "file": frame.file, "line": frame.line,
+                         "vendor": frame.vendor, "type": frame.type,
+                         "reference": frame.reference}
+    if frame.label:
+        d["label"] = frame.label
+    d.update(frame_delta(frame.pose, measured, tolerance))
+    why = reference_problem(cf, frame)
+    if why:
+        d["warning"] = f"{frame.name}: {why}; the measured frame is in robot world"
+    return d
+
+
+# ------------------------------------------------------------- two files
+
+_IGNORED_INFO = {"module"}
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, bool) or isinstance(b, bool):
+        return a is b
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return _close32(float(a), float(b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return a == b
+
+
+def frame_changes(old: Frame, new: Frame) -> list[str]:
+    """Which aspects of a frame differ: 'value' (the pose), 'type',
+    'reference', 'label', and info keys (robhold, ufprog, load, ...)."""
+    out = []
+    if not poses_equal(old.pose, new.pose):
+        out.append("value")
+    for attr in ("type", "reference", "label"):
+        if getattr(old, attr) != getattr(new, attr):
+            out.append(attr)
+    for k in sorted(set(old.info) | set(new.info)):
+        if k in _IGNORED_INFO or k in out:
+            continue
+        if not _same(old.info.get(k), new.info.get(k)):
+            out.append(k)
+    return out
+
+
+def _index(frames: list[Frame]) -> dict[str, list[Frame]]:
+    out: dict[str, list[Frame]] = {}
+    for f in frames:
+        out.setdefault(f.name.casefold(), []).append(f)
+    return out
+
+
+def diff_files(old: ControllerFile | None, new: ControllerFile | None) -> dict[str, Any]:
+    """Every frame of ``old`` and ``new`` matched by name. ``None`` stands for
+    a file that does not exist (git's /dev/null): all added or all removed."""
+    old_frames = old.frames if old is not None else []
+    new_frames = new.frames if new is not None else []
+    oi, ni = _index(old_frames), _index(new_frames)
+    changed, added, removed = [], [], []
+    unchanged = 0
+    order = list(oi) + [k for k in ni if k not in oi]
+    for key in order:
+        olds, news = oi.get(key, []), ni.get(key, [])
+        for o, n in zip(olds, news):
+            what = frame_changes(o, n)
+            if not what:
+                unchanged += 1
+                continue
+            item: dict[str, Any] = {"name": n.name, "vendor": n.vendor, "type": n.type,
+                                    "changes": what, "old": o.as_dict(), "new": n.as_dict()}
+            if n.label:
+                item["label"] = n.label
+            if o.pose is not None and n.pose is not None:
+                delta = frame_delta(o.pose, n.pose)
+                # simulated/measured are SPEC's names for the two sides;
+                # here they are the old file and the new one.
+                for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist", "dt_mean",
+                          "group", "pass"):
+                    item[k] = delta[k]
+                item["simulated"], item["measured"] = delta["simulated"], delta["measured"]
+            changed.append(item)
+        removed.extend(o.as_dict() for o in olds[len(news):])
+        added.extend(n.as_dict() for n in news[len(olds):])
+    return {"old": old.path if old is not None else None,
+            "new": new.path if new is not None else None,
+            "changed": changed, "added": added, "removed": removed,
+            "unchanged": unchanged}
+
+
+# ------------------------------------------------------------- text forms
+
+def _num(v: float | None, digits: int) -> str:
+    if v is None:
+        return "-"
+    s = f"{v:.{digits}f}"
+    return s.lstrip("-") if float(s) == 0 else s
+
+
+def frame_line(f: Frame) -> str:
+    """One stable line per frame: name, type, label, reference, the values at
+    the written precision (no file position, so unrelated edits do not show)."""
+    parts = [f.name, f.type]
+    if f.label:
+        parts.append(f"label={f.label!r}")
+    parts.append(f"ref={f.reference}")
+    p = f.pose
+    if p is None:
+        parts.append("no value")
+    else:
+        parts += [f"x={_num(p.x, 3)}", f"y={_num(p.y, 3)}", f"z={_num(p.z, 3)}"]
+        if f.vendor == "abb":
+            parts.append("q=[" + ",".join(_num(c, 6) for c in p.q) + "]")
+        else:
+            a, b, c = p.abc
+            parts += [f"a={_num(a, 4)}", f"b={_num(b, 4)}", f"c={_num(c, 4)}"]
+    for k in ("robhold", "ufprog", "ufmec", "storage", "base_type", "tool_type"):
+        if k in f.info and f.info[k] is not None and f.info[k] != "":
+            parts.append(f"{k}={f.info[k]}")
+    return " ".join(str(x) for x in parts)
+
+
+def textconv(cf: ControllerFile) -> str:
+    return "".join(frame_line(f) + "\n" for f in cf.frames)
+
+
+def _pose_text(d: dict) -> str:
+    if d.get("x") is None:
+        return "no value"
+    s = f"x {d['x']:.3f}  y {d['y']:.3f}  z {d['z']:.3f}  " \
+        f"a {d['a']:.4f}  b {d['b']:.4f}  c {d['c']:.4f}"
+    if d.get("vendor") == "abb" and d.get("q"):
+        s += "  q [" + ", ".join(f"{c:.6f}" for c in d["q"]) + "]"
+    return s
+
+
+def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) -> str:
+    lines = [f"ucsio diff a/{old_label} b/{new_label}"]
+    if not (result["changed"] or result["added"] or result["removed"]):
+        lines.append(f"  no frame changed ({result['unchanged']} frames compared)")
+        return "\n".join(lines) + "\n"
+    for c in result["changed"]:
+        head = f"~ {c['name']} ({c['type']}): {', '.join(c['changes'])} changed"
+        lines.append(head)
+        if "dx" in c and "value" in c["changes"]:
+            lines.append(f"    Δ dx {c['dx']:+.3f}  dy {c['dy']:+.3f}  dz {c['dz']:+.3f} mm  "
+                         f"da {c['da']:+.4f}  db {c['db']:+.4f}  dc {c['dc']:+.4f} deg  "
+                         f"angle {c['angle']:.4f} deg  dist {c['dist']:.3f} mm  "
+                         f"dt_mean {c['dt_mean']:.3f} mm (group {c['group']})")
+        lines.append(f"    - {_pose_text(c['old'])}")
+        lines.append(f"    + {_pose_text(c['new'])}")
+        for k in c["changes"]:
+            if k != "value":
+                lines.append(f"    {k}: {c['old'].get(k)!r} -> {c['new'].get(k)!r}")
+    for a in result["added"]:
+        lines.append(f"+ {a['name']} ({a['type']}) added: {_pose_text(a)}")
+    for r in result["removed"]:
+        lines.append(f"- {r['name']} ({r['type']}) removed: {_pose_text(r)}")
+    lines.append(f"  {len(result['changed'])} changed, {len(result['added'])} added, "
+                 f"{len(result['removed'])} removed, {result['unchanged']} unchanged")
+    return "\n".join(lines) + "\n"
+
+
+# ------------------------------------------------------------- git
+
+def load_as(path: str, display: str) -> ControllerFile | None:
+    """Parse ``path`` (a git temporary file, maybe /dev/null) as if it were
+    ``display`` (the path in the repository: its suffix picks the vendor)."""
+    if path == DEVNULL or (os.name == "nt" and path.lower() == "nul"):
+        return None
+    doc = Document.read(path)
+    doc.path = display
+    return parse(doc)
+
+
+def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]:
+    """Text (and the structured result, or None when the files could not be
+    parsed) for git's external diff driver."""
+    try:
+        result = diff_files(load_as(old_file, path), load_as(new_file, path))
+    except UcsioError as exc:
+        return (f"ucsio diff a/{path} b/{path}\n  not a controller file ucsio can read ({exc}); "
+                "plain text diff:\n" + plain_diff(path, old_file, new_file)), None
+    return format_files_diff(result, path, path), result
+
+
+def plain_diff(path: str, old_file: str, new_file: str) -> str:
+    def lines(p):
+        if p == DEVNULL:
+            return []
+        raw = open(p, "rb").read()
+        return [ln.rstrip("\r") for ln in Document(raw, p).text.split("\n")]
+    out = difflib.unified_diff(lines(old_file), lines(new_file), f"a/{path}", f"b/{path}",
+                               lineterm="")
+    return "\n".join(out) + "\n"
+
+
+def textconv_file(path: str) -> str:
+    """The listing of a file for git textconv. A file ucsio cannot read, or
+    one without any frame, is passed through as text, so git still shows
+    what changed in it."""
+    try:
+        cf = load(path)
+        if cf.frames:
+            return textconv(cf)
+    except UcsioError:
+        pass
+    raw = open(path, "rb").read()
+    return Document(raw, path).text
+
+
+__all__ = ["diff_frame", "diff_files", "frame_changes", "textconv", "frame_line",
+           "format_files_diff", "git_diff", "textconv_file"]

@@ -1,0 +1,63 @@
+"""ucsio demo: the shipped example cells, end to end, from any folder."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from importlib import resources
+
+import pytest
+
+from ucsio.controller import load
+from ucsio.demo import CELLS
+
+
+def run(tmp_path, *args):
+    return subprocess.run([sys.executable, "-m", "ucsio", "demo", *args], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_demo_data_is_package_data():
+    root = resources.files("ucsio.demo").joinpath("data")
+    for cell in CELLS:
+        assert root.joinpath(cell.controller).is_file()
+        assert root.joinpath(cell.measurement).is_file()
+
+
+def test_demo_text(tmp_path):
+    r = run(tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = r.stdout
+    for needle in ("cell R01 (KUKA)", "cell R02 (ABB)", "EXCLUDED (auto)", "accepted",
+                   "group 1, PASS", "--- a/R01_kuka/$config.dat", "+BASE_DATA[3]={X 6125.",
+                   "--- a/R02_abb/CellR02.mod", "demo: 2 cells, every cell passes."):
+        assert needle in out
+    assert list(tmp_path.iterdir()) == []          # nothing written
+
+
+def test_demo_json_and_out(tmp_path):
+    r = run(tmp_path, "--json", "--out", "patched")
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert d["ok"] is True and len(d["cells"]) == 2
+    for cell in d["cells"]:
+        assert cell["solve"]["accepted"] is True
+        assert cell["solve"]["n_used"] == cell["solve"]["n_points"] - 1      # the blunder
+        assert {"dx", "dy", "dz", "angle", "dt_mean", "group", "pass"} <= cell["diff"].keys()
+        assert cell["diff"]["group"] == 1 and cell["diff"]["pass"] is True
+        assert cell["patch"]["diff"].startswith("--- a/")
+        written = tmp_path / cell["patch"]["written"]
+        got = load(written).frame(cell["frame"]).pose
+        m = cell["solve"]["frame"]
+        assert abs(got.x - m["x"]) <= 5e-4 and abs(got.y - m["y"]) <= 5e-4 \
+            and abs(got.z - m["z"]) <= 5e-4
+    kuka = d["cells"][0]
+    # SPEC's example cell: the simulated base of SPEC's diff, measured near SPEC's numbers
+    assert kuka["diff"]["simulated"]["x"] == pytest.approx(6130.0)
+    assert kuka["diff"]["dt_mean"] == pytest.approx(5.892, abs=0.05)
+
+
+def test_demo_api():
+    from ucsio import api
+    d = api.demo()
+    assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02"]

@@ -1,0 +1,86 @@
+"""`git diff` of a folder of controller backups shows frame changes, through
+ucsio as an external diff driver (diff.<driver>.command) or as a textconv."""
+from __future__ import annotations
+
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from conftest import FIXTURES
+
+pytestmark = pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+
+UCSIO = f"{shlex.quote(sys.executable)} -m ucsio diff"
+
+
+def git(repo, *args, check=True) -> str:
+    env = dict(os.environ, GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.com",
+               GIT_COMMITTER_NAME="t", GIT_COMMITTER_EMAIL="t@example.com",
+               GIT_CONFIG_NOSYSTEM="1", HOME=str(repo), GIT_PAGER="cat", PAGER="cat")
+    env.pop("GIT_EXTERNAL_DIFF", None)
+    r = subprocess.run(["git", *args], cwd=repo, env=env, capture_output=True, text=True,
+                       check=check)
+    return r.stdout
+
+
+@pytest.fixture
+def repo(tmp_path):
+    r = tmp_path / "backups"
+    (r / "R01").mkdir(parents=True)
+    (r / "R02").mkdir()
+    shutil.copy(FIXTURES / "patch" / "cell.mod", r / "R01" / "cell.mod")
+    shutil.copy(FIXTURES / "patch" / "refs" / "$config.dat", r / "R02" / "$config.dat")
+    (r / ".gitattributes").write_text("*.mod diff=ucsio\n*.sys diff=ucsio\n*.dat diff=ucsio\n")
+    git(r, "init", "-q", ".")
+    git(r, "add", ".")
+    git(r, "commit", "-q", "-m", "backup 1")
+    return r
+
+
+def patch(repo, *args):
+    subprocess.run([sys.executable, "-m", "ucsio", "patch", *args, "--in-place"], cwd=repo,
+                   check=True, capture_output=True)
+
+
+def test_external_diff_driver(repo):
+    git(repo, "config", "diff.ucsio.command", UCSIO)
+    patch(repo, "R01/cell.mod", "--frame", "wobjSpec",
+          "--set=6125.39,2445.56,1168.99,90.529,-24.476,-0.313")
+    patch(repo, "R02/$config.dat", "--frame", "table", "--set=2500,-1200,805,180,0,0")
+    out = git(repo, "diff")
+    assert "ucsio diff a/R01/cell.mod b/R01/cell.mod" in out
+    assert "~ wobjSpec (wobjdata): value changed" in out
+    assert "dt_mean 5.892 mm (group 1)" in out
+    assert "ucsio diff a/R02/$config.dat b/R02/$config.dat" in out
+    assert "~ BASE_DATA[1] (BASE_DATA): value changed" in out and "dz +5.000" in out
+    # a new backup file: git passes /dev/null as the old side
+    shutil.copy(repo / "R01" / "cell.mod", repo / "R01" / "cell_copy.mod")
+    git(repo, "add", "R01/cell_copy.mod")
+    out = git(repo, "diff", "--cached")
+    assert "ucsio diff a/R01/cell_copy.mod" in out and "19 added" in out
+    # a deleted one
+    git(repo, "commit", "-q", "-am", "backup 2")
+    git(repo, "rm", "-q", "R01/cell_copy.mod")
+    out = git(repo, "diff", "--cached")
+    assert "19 removed" in out
+
+
+def test_textconv_driver(repo):
+    git(repo, "config", "diff.ucsio.textconv", f"{UCSIO} --textconv")
+    patch(repo, "R01/cell.mod", "--frame", "wobjSpec",
+          "--set=6125.39,2445.56,1168.99,90.529,-24.476,-0.313")
+    out = git(repo, "diff")
+    minus = [ln for ln in out.splitlines() if ln.startswith("-wobjSpec ")]
+    plus = [ln for ln in out.splitlines() if ln.startswith("+wobjSpec ")]
+    assert minus == ["-wobjSpec wobjdata ref=world x=6130.000 y=2444.711 z=1156.772 "
+                     "q=[0.690346,0.153046,-0.153046,0.690346] robhold=False ufprog=True "
+                     "storage=TASK PERS"]
+    assert len(plus) == 1 and "x=6125.390 y=2445.560 z=1168.990" in plus[0]
+    # only that frame's line changed
+    changed = [ln for ln in out.splitlines()
+               if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
+    assert len(changed) == 2
