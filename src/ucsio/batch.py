@@ -1,0 +1,805 @@
+"""Many datasets at once: a TOML manifest of stations, solved and diffed in
+batch, with a summary by group (../shared/SPEC.md, "Many robots at once").
+
+The flow, each step callable on its own:
+
+- ``read_manifest(path)``: the manifest, checked (``UcsioError``, exit 2, for
+  anything wrong with the manifest itself: bad TOML, unknown or mistyped keys,
+  a missing or duplicate name).
+- ``run_batch(manifest)``: per entry, read the measurement and the
+  controller's simulated frame (each file parsed once, cached by path), solve
+  every dataset (``solve_many``: the method of ``ucsio.solve``, batched: one
+  Horn call per exclusion round for all entries together, each entry's full
+  fit and its leave-one-out fits stacked in it), diff against the simulated
+  frame; optionally the Monte Carlo uncertainty and patched copies of the
+  controller files. A failing entry (missing file, bad CSV, unknown frame,
+  degenerate points) gets its ``error`` and the run goes on.
+- ``summarize(results)``: total, passed, rejected, errors, success rate, the
+  five groups (count, percent of total, mean and standard deviation of the
+  measurement error e over the *accepted* entries of the group) and the
+  Pearson correlation of simulated vs measured x, y, z over passing entries.
+
+Statistics conventions: ``std_e`` is the sample standard deviation (n - 1
+in the denominator) and is ``null`` for a group with fewer than 2 accepted
+entries; ``mean_e`` is ``null`` for an empty group; a correlation is ``null``
+with fewer than 2 passing entries or when either side does not vary.
+"""
+from __future__ import annotations
+
+import math
+import os
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
+from .errors import UcsioError
+from .frames import Pose
+
+N_GROUPS = len(GROUP_BOUNDS) + 1
+ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
+              "min_points", "tolerance", "exclude", "no_exclusion")
+DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
+REQUIRED = ("measurement", "controller", "frame")
+#: padded (sets x points x points) elements above which one round is split
+#: into Horn calls by point count (a 200-point dataset would otherwise pad
+#: every 8-point one to 200 x 200).
+PAD_BUDGET = 6_000_000
+
+Progress = Callable[[str, int, int], None]
+
+
+# ---------------------------------------------------------------- manifest
+
+@dataclass(frozen=True)
+class Entry:
+    index: int                        # 0-based position in the manifest
+    name: str
+    measurement: str                  # paths resolved against the manifest's folder
+    controller: str
+    frame: str
+    tcp: tuple[float, float, float] | None
+    tool: str | None                  # "FILE:NAME", FILE resolved
+    threshold: float = 1.5
+    min_points: int = 6
+    tolerance: float = DEFAULT_TOLERANCE
+    exclude: tuple[str, ...] = ()
+    no_exclusion: bool = False
+
+
+@dataclass
+class Manifest:
+    path: str
+    entries: list[Entry]
+
+
+def _number(value, key: str, where: str, path: str, *, positive=False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise UcsioError(f"{where}: {key} must be a number, got {value!r}", file=path)
+    if positive and not value > 0:
+        raise UcsioError(f"{where}: {key} must be positive, got {value!r}", file=path)
+    return float(value)
+
+
+def _resolve(base: Path, rel: str) -> str:
+    p = Path(rel).expanduser()
+    return os.path.normpath(p if p.is_absolute() else base / p)
+
+
+def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> dict:
+    unknown = [k for k in table if k not in allowed]
+    if unknown:
+        raise UcsioError(f"{where}: unknown key{'s' if len(unknown) > 1 else ''} "
+                         f"{', '.join(map(repr, unknown))} (allowed: {', '.join(allowed)})",
+                         file=path)
+    if "tcp" in table and "tool" in table:
+        raise UcsioError(f"{where}: give either tcp or tool, not both", file=path)
+    return table
+
+
+def read_manifest(path: str | os.PathLike) -> Manifest:
+    """Read and check a batch manifest; UcsioError (exit 2) when it is bad."""
+    path = os.fspath(path)
+    try:
+        with open(path, "rb") as fh:
+            data = tomllib.load(fh)
+    except OSError as exc:
+        raise UcsioError(f"cannot read manifest: {exc.strerror or exc}", file=path) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise UcsioError(f"not valid TOML: {exc}", file=path) from None
+    base = Path(path).resolve().parent
+    top_unknown = [k for k in data if k not in ("defaults", "entry")]
+    if top_unknown:
+        raise UcsioError(f"unknown top-level key(s) {', '.join(map(repr, top_unknown))} "
+                         "(a manifest has [defaults] and [[entry]] tables)", file=path)
+    defaults = data.get("defaults", {})
+    if not isinstance(defaults, dict):
+        raise UcsioError("[defaults] must be a table", file=path)
+    _check_table(defaults, "[defaults]", DEFAULT_KEYS, path)
+    raw_entries = data.get("entry", [])
+    if not isinstance(raw_entries, list) or not all(isinstance(e, dict) for e in raw_entries):
+        raise UcsioError("entries must be [[entry]] tables", file=path)
+    if not raw_entries:
+        raise UcsioError("no [[entry]] tables: nothing to do", file=path)
+
+    entries: list[Entry] = []
+    seen: dict[str, int] = {}
+    for i, raw in enumerate(raw_entries):
+        label = f"entry {i + 1}" + (f" ({raw['name']!r})" if isinstance(raw.get("name"), str) else "")
+        _check_table(raw, label, ENTRY_KEYS, path)
+        merged = dict(defaults)
+        if "tcp" in raw or "tool" in raw:          # the entry's own TCP source wins
+            merged.pop("tcp", None)
+            merged.pop("tool", None)
+        merged.update(raw)
+        name = merged.get("name")
+        if not isinstance(name, str) or not name.strip():
+            raise UcsioError(f"{label}: needs a name (a non-empty string)", file=path)
+        key = name.strip().casefold()
+        if key in seen:
+            raise UcsioError(f"duplicate entry name {name!r} (entries {seen[key] + 1} and {i + 1});"
+                             " names must be unique", file=path)
+        seen[key] = i
+        for k in REQUIRED:
+            if not isinstance(merged.get(k), str) or not merged[k].strip():
+                raise UcsioError(f"{label}: needs {k} (a string)", file=path)
+        tcp = None
+        tool = None
+        if "tool" in merged:
+            spec = merged["tool"]
+            file, sep, tname = spec.rpartition(":") if isinstance(spec, str) else ("", "", "")
+            if not sep or not file or not tname:
+                raise UcsioError(f"{label}: tool must be \"FILE:NAME\", got {spec!r}", file=path)
+            tool = f"{_resolve(base, file)}:{tname}"
+        else:
+            v = merged.get("tcp", [0.0, 0.0, 0.0])
+            if not isinstance(v, list) or len(v) != 3:
+                raise UcsioError(f"{label}: tcp must be a list of three numbers [x, y, z], got {v!r}",
+                                 file=path)
+            tcp = tuple(_number(c, "tcp", label, path) for c in v)
+        threshold = _number(merged.get("threshold", 1.5), "threshold", label, path, positive=True)
+        tolerance = _number(merged.get("tolerance", DEFAULT_TOLERANCE), "tolerance", label, path,
+                            positive=True)
+        mp = merged.get("min_points", 6)
+        if isinstance(mp, bool) or not isinstance(mp, int) or mp < 3:
+            raise UcsioError(f"{label}: min_points must be an integer >= 3, got {mp!r}", file=path)
+        ex = merged.get("exclude", [])
+        if isinstance(ex, str):
+            ex = [ex]
+        if not isinstance(ex, list) or not all(isinstance(x, str) for x in ex):
+            raise UcsioError(f"{label}: exclude must be a list of point names", file=path)
+        ne = merged.get("no_exclusion", False)
+        if not isinstance(ne, bool):
+            raise UcsioError(f"{label}: no_exclusion must be true or false", file=path)
+        entries.append(Entry(index=i, name=name, measurement=_resolve(base, merged["measurement"]),
+                             controller=_resolve(base, merged["controller"]), frame=merged["frame"],
+                             tcp=tcp, tool=tool, threshold=threshold, min_points=mp,
+                             tolerance=tolerance, exclude=tuple(ex), no_exclusion=ne))
+    return Manifest(path=path, entries=entries)
+
+
+# ---------------------------------------------------------------- solving, batched
+
+@dataclass
+class Dataset:
+    """One dataset for ``solve_many``: points already in robot world."""
+
+    names: list[str]
+    laser: np.ndarray            # (n, 3)
+    robot: np.ndarray            # (n, 3)
+    weights: np.ndarray          # (n,)
+    threshold: float = 1.5
+    min_points: int = 6
+    exclude: tuple[str, ...] = ()
+    no_exclusion: bool = False
+    lines: list[int] | None = None
+    path: str | None = None      # for error messages
+
+
+def _fit_sets(laser, robot, weights):
+    """Horn fits of (S, n, 3) sets: R (S,3,3), t (S,3), ok (S,)."""
+    from .horn import horn_batch
+    fit = horn_batch(laser, robot, weights)
+    return fit.R, fit.t, fit.ok, fit.status
+
+
+def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
+    """For every active dataset: the fit of its used points and the
+    leave-one-out fit of each point, in as few Horn calls as the padding
+    budget allows (one, normally). Returns per dataset (R, t, status,
+    residual (n,), loo (n,) with nan where undetermined or not used)."""
+    out: dict[int, tuple] = {}
+    sizes = {i: len(data[i].names) for i in active}
+    chunks: list[list[int]] = []
+    n_max = max(sizes.values())
+    if len(active) * (n_max + 1) * n_max * 3 <= PAD_BUDGET:
+        chunks = [active]
+    else:   # bucket by point count (powers of two), so padding stays bounded
+        buckets: dict[int, list[int]] = {}
+        for i in active:
+            buckets.setdefault(max(4, 1 << (sizes[i] - 1).bit_length()), []).append(i)
+        chunks = [buckets[k] for k in sorted(buckets)]
+    for chunk in chunks:
+        A = len(chunk)
+        n = max(sizes[i] for i in chunk)
+        L = np.zeros((A, n, 3))
+        Rb = np.zeros((A, n, 3))
+        W = np.zeros((A, n))
+        for a, i in enumerate(chunk):
+            d = data[i]
+            m = sizes[i]
+            L[a, :m] = d.laser
+            Rb[a, :m] = d.robot
+            W[a, :m] = d.weights * used[i]
+        # stack: A full fits, then A * n leave-one-out fits (point j's weight zeroed)
+        W_loo = (W[:, None, :] * (1.0 - np.eye(n))[None]).reshape(A * n, n)
+        L_all = np.concatenate([L, np.repeat(L, n, axis=0)])
+        R_all = np.concatenate([Rb, np.repeat(Rb, n, axis=0)])
+        W_all = np.concatenate([W, W_loo])
+        R, t, ok, status = _fit_sets(L_all, R_all, W_all)
+        Rf, tf, stf = R[:A], t[:A], status[:A]
+        pred = np.einsum("aij,anj->ani", Rf, L) + tf[:, None, :]
+        resid = np.linalg.norm(Rb - pred, axis=2)                       # (A, n)
+        Rl = R[A:].reshape(A, n, 3, 3)
+        tl = t[A:].reshape(A, n, 3)
+        okl = ok[A:].reshape(A, n)
+        pred_l = np.einsum("anij,anj->ani", Rl, L) + tl
+        loo = np.linalg.norm(Rb - pred_l, axis=2)
+        n_used = (W > 0).sum(axis=1)
+        loo = np.where(okl & (W > 0) & (n_used[:, None] >= 4), loo, np.nan)
+        for a, i in enumerate(chunk):
+            m = sizes[i]
+            out[i] = (Rf[a], tf[a], int(stf[a]), resid[a, :m], loo[a, :m])
+    return out
+
+
+def solve_many(data: Sequence[Dataset]) -> list:
+    """The method of ``ucsio.solve.solve_points`` on many datasets at once.
+
+    Each round fits every still-active dataset and all its leave-one-out
+    subsets in one batched Horn call; the exclusion rule then runs per
+    dataset on those numbers. Rounds = 1 + the most points any dataset
+    excludes. Returns, per dataset, a ``ucsio.solve.Solution`` or the
+    ``UcsioError`` that ``solve_points`` would have raised."""
+    from . import horn
+    from .solve import PointResult, Solution
+
+    results: list = [None] * len(data)
+    used: dict[int, np.ndarray] = {}
+    excluded_by: dict[int, list] = {}
+    active: list[int] = []
+    for i, d in enumerate(data):
+        n = len(d.names)
+        marks: list[str | None] = [None] * n
+        by_name = {nm.casefold(): k for k, nm in enumerate(d.names)}
+        bad = None
+        for name in d.exclude:
+            k = by_name.get(name.strip().casefold())
+            if k is None:
+                bad = UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(d.names)})",
+                                 file=d.path)
+                break
+            marks[k] = "hand"
+        if bad is not None:
+            results[i] = bad
+            continue
+        used[i] = np.array([m is None for m in marks])
+        excluded_by[i] = marks
+        active.append(i)
+
+    first = {i: True for i in active}
+    final: dict[int, tuple] = {}
+    while active:
+        fits = _round(data, active, used)
+        still: list[int] = []
+        for i in active:
+            d = data[i]
+            R, t, status, resid, loo = fits[i]
+            u = used[i]
+            if status != horn.OK:
+                which = "" if u.all() else f" (of the {int(u.sum())} points used)"
+                results[i] = UcsioError(f"cannot fit a frame{which}: {horn.REASONS[status]}",
+                                        file=d.path)
+                continue
+            n_used = int(u.sum())
+            if not first[i]:
+                if n_used < d.min_points or resid[u].max() <= d.threshold:
+                    final[i] = fits[i]
+                    continue
+            first[i] = False
+            if d.no_exclusion or n_used - 1 < 3:
+                final[i] = fits[i]
+                continue
+            lu = np.where(u, loo, np.nan)
+            if not np.isfinite(lu).any() or np.nanmax(lu) <= d.threshold:
+                final[i] = fits[i]
+                continue
+            worst = int(np.nanargmax(lu))
+            u[worst] = False
+            excluded_by[i][worst] = "auto"
+            still.append(i)
+        active = still
+
+    for i, (R, t, status, resid, loo) in final.items():
+        d = data[i]
+        u = used[i]
+        pred = d.laser @ R.T + t
+        dvec = d.robot - pred
+        loo_all = np.where(u, loo, resid)
+        r_used = resid[u]
+        n_used = int(u.sum())
+        pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
+        points = [PointResult(name=d.names[k], residual=float(resid[k]),
+                              loo_residual=float(loo_all[k]), used=bool(u[k]),
+                              dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
+                              excluded_by=excluded_by[i][k], weight=float(d.weights[k]),
+                              line=None if d.lines is None else d.lines[k])
+                  for k in range(len(d.names))]
+        results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
+                              rms=float(np.sqrt(np.mean(r_used ** 2))),
+                              mean=float(np.mean(r_used)), max=float(np.max(r_used)),
+                              accepted=n_used >= d.min_points, threshold=float(d.threshold),
+                              min_points=int(d.min_points), source=d.path,
+                              no_exclusion=bool(d.no_exclusion))
+    return results
+
+
+# ---------------------------------------------------------------- the run
+
+@dataclass
+class EntryResult:
+    entry: Entry
+    solution: Any = None              # ucsio.solve.Solution
+    simulated: Pose | None = None
+    measured: Pose | None = None      # in the frame's own parent (differs from the fit for oframe)
+    delta: dict | None = None
+    error: str | None = None
+    stage: str | None = None          # where it failed: manifest paths, controller, tool, measurement, solve
+    vendor: str | None = None
+    frame_file: str | None = None
+    frame_line: int | None = None
+    patched: str | None = None        # the patched copy (--patch-dir)
+    patch_error: str | None = None    # why no patched copy was written
+
+    @property
+    def accepted(self) -> bool:
+        return self.error is None and self.solution is not None and bool(self.solution.accepted)
+
+    @property
+    def passed(self) -> bool:
+        return self.accepted and self.delta is not None and bool(self.delta["pass"])
+
+    @property
+    def status(self) -> str:
+        if self.error is not None:
+            return "error"
+        if not self.accepted:
+            return "rejected"
+        return "pass" if self.passed else "over tolerance"
+
+    @property
+    def e(self) -> float | None:
+        return None if self.solution is None or self.error else self.solution.mean
+
+    @property
+    def dt_mean(self) -> float | None:
+        return self.delta["dt_mean"] if self.delta else None
+
+    @property
+    def group(self) -> int | None:
+        return self.delta["group"] if self.delta else None
+
+    def as_dict(self, points: bool = True) -> dict[str, Any]:
+        en = self.entry
+        d: dict[str, Any] = {
+            "name": en.name, "status": self.status, "accepted": self.accepted,
+            "e": self.e, "dt_mean": self.dt_mean, "group": self.group, "pass": self.passed,
+            "frame": self.measured.as_dict() if self.measured is not None else None,
+        }
+        if self.error is not None:
+            d["error"] = self.error
+            d["stage"] = self.stage
+        d.update({"measurement": en.measurement, "controller": en.controller,
+                  "frame_name": en.frame, "vendor": self.vendor,
+                  "tcp": list(en.tcp) if en.tcp is not None else
+                  (list(self.solution.tcp) if self.solution is not None else None),
+                  "tool": en.tool, "threshold": en.threshold, "min_points": en.min_points,
+                  "tolerance": en.tolerance})
+        if self.simulated is not None:
+            d["simulated"] = self.simulated.as_dict()
+        if self.delta is not None:
+            d["diff"] = {k: self.delta[k] for k in ("dx", "dy", "dz", "da", "db", "dc", "angle",
+                                                     "dist", "dt_mean", "group", "pass")}
+        s = self.solution
+        if s is not None:
+            d.update({"n_points": s.n_points, "n_used": s.n_used, "rms": s.rms, "mean": s.mean,
+                      "max": s.max})
+            if points:
+                d["points"] = [{"name": p.name, "residual": p.residual,
+                                "loo_residual": p.loo_residual if math.isfinite(p.loo_residual)
+                                else None, "used": p.used, "excluded_by": p.excluded_by}
+                               for p in s.points]
+            if s.uncertainty is not None:
+                d["uncertainty"] = s.uncertainty
+        if self.patched is not None:
+            d["patched"] = self.patched
+        if self.patch_error is not None:
+            d["patch_error"] = self.patch_error
+        return d
+
+
+@dataclass
+class BatchResult:
+    manifest: Manifest
+    entries: list[EntryResult]
+    summary: dict = field(default_factory=dict)
+    timings: dict = field(default_factory=dict)
+
+    @property
+    def all_passed(self) -> bool:
+        """Every entry passed (and every patched copy asked for was written)."""
+        return all(r.passed and r.patch_error is None for r in self.entries)
+
+    def as_dict(self, points: bool = True) -> dict[str, Any]:
+        return {"manifest": self.manifest.path,
+                "entries": [r.as_dict(points) for r in self.entries],
+                "summary": self.summary}
+
+
+class _Cache:
+    """Each file read once: controller files, measurements; errors too."""
+
+    def __init__(self):
+        self.controllers: dict[str, Any] = {}
+        self.measurements: dict[str, Any] = {}
+
+    def controller(self, path: str):
+        if path not in self.controllers:
+            from .controller import load
+            try:
+                self.controllers[path] = load(path)
+            except UcsioError as exc:
+                self.controllers[path] = exc
+            except OSError as exc:
+                self.controllers[path] = UcsioError(
+                    f"cannot read controller file: {exc.strerror or exc}", file=path)
+        got = self.controllers[path]
+        if isinstance(got, Exception):
+            raise got
+        return got
+
+    def measurement(self, path: str):
+        if path not in self.measurements:
+            from .measurement import read_measurement
+            try:
+                self.measurements[path] = read_measurement(path)
+            except UcsioError as exc:
+                self.measurements[path] = exc
+        got = self.measurements[path]
+        if isinstance(got, Exception):
+            raise got
+        return got
+
+
+def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
+    file, _, name = spec.rpartition(":")
+    frame = cache.controller(file).frame(name)
+    if frame.info.get("robhold") is False or frame.reference != "flange":
+        raise UcsioError(f"tool {frame.name} is not a robot-held tool (reference "
+                         f"{frame.reference!r}); the TCP must be given in flange coordinates",
+                         file=frame.file, line=frame.line)
+    if frame.pose is None:
+        raise UcsioError(f"tool {frame.name} has no complete value", file=frame.file,
+                         line=frame.line)
+    return frame.pose.t
+
+
+def _inverse(p: Pose) -> Pose:
+    m = p.matrix
+    mt = tuple(tuple(m[j][i] for j in range(3)) for i in range(3))
+    t = tuple(-sum(mt[i][j] * p.t[j] for j in range(3)) for i in range(3))
+    return Pose.from_matrix(mt, t)
+
+
+def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
+    """The fit is the UCS in robot world; an ABB object frame is relative to
+    its wobj's user frame, so express it there."""
+    if frame.reference == "uframe" and frame.name.lower().endswith(".oframe"):
+        uframe = cf.frame(frame.name[: -len(".oframe")]).pose
+        if uframe is None:
+            raise UcsioError(f"{frame.name}: its user frame has no complete value",
+                             file=frame.file, line=frame.line)
+        return _inverse(uframe).compose(fit)
+    if frame.reference not in ("world", "unknown"):
+        raise UcsioError(f"frame {frame.name} is relative to {frame.reference!r}, not robot world:"
+                         " a measured UCS cannot be compared with it", file=frame.file,
+                         line=frame.line)
+    return fit
+
+
+def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 0.015,
+              sigma_robot: float = 0.05, seed: int = 0, patch_dir: str | None = None,
+              progress: Progress | None = None) -> BatchResult:
+    """Solve and diff every entry; one entry's failure never stops the run."""
+    import time
+
+    from .measurement import read_measurement  # noqa: F401  (import cost counted in "read")
+
+    t0 = time.perf_counter()
+    cache = _Cache()
+    results = [EntryResult(entry=e) for e in manifest.entries]
+    datasets: list[Dataset] = []
+    owners: list[int] = []
+    frames: dict[int, Any] = {}
+    total = len(results)
+    for k, r in enumerate(results):
+        en = r.entry
+        stage = "controller"
+        try:
+            cf = cache.controller(en.controller)
+            r.vendor = cf.vendor
+            frame = cf.frame(en.frame)
+            r.frame_file, r.frame_line = frame.file, frame.line
+            if frame.pose is None:
+                raise UcsioError(f"frame {frame.name} has no complete value", file=frame.file,
+                                 line=frame.line)
+            r.simulated = frame.pose
+            frames[k] = (cf, frame)
+            stage = "tool"
+            tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
+            stage = "measurement"
+            meas = cache.measurement(en.measurement)
+            datasets.append(Dataset(names=meas.names, laser=meas.laser,
+                                    robot=meas.robot_points(tcp), weights=meas.weights,
+                                    threshold=en.threshold, min_points=en.min_points,
+                                    exclude=en.exclude, no_exclusion=en.no_exclusion,
+                                    lines=meas.lines, path=meas.path))
+            owners.append(k)
+            r._tcp = tcp            # type: ignore[attr-defined]
+            r._meas = meas          # type: ignore[attr-defined]
+        except UcsioError as exc:
+            r.error, r.stage = (f"tool {en.tool}: {exc}" if stage == "tool" else str(exc)), stage
+        if progress:
+            progress("read", k + 1, total)
+    t1 = time.perf_counter()
+
+    solved = solve_many(datasets) if datasets else []
+    t2 = time.perf_counter()
+    for k, sol in zip(owners, solved):
+        r = results[k]
+        if isinstance(sol, UcsioError):
+            r.error, r.stage = str(sol), "solve"
+            continue
+        sol.tcp = tuple(float(v) for v in r._tcp)  # type: ignore[attr-defined]
+        sol.tool = r.entry.tool
+        r.solution = sol
+        cf, frame = frames[k]
+        try:
+            r.measured = _measured_in_parent(cf, frame, sol.pose)
+        except UcsioError as exc:
+            r.error, r.stage = str(exc), "diff"
+            continue
+        if sol.accepted:
+            r.delta = frame_delta(r.simulated, r.measured, r.entry.tolerance)
+    if progress:
+        progress("solve", total, total)
+    t3 = time.perf_counter()
+
+    if uncertainty:
+        from .solve import solution_uncertainty
+        todo = [r for r in results if r.accepted]
+        for j, r in enumerate(todo):
+            solution_uncertainty(r._meas, r.solution, uncertainty, sigma_laser,  # type: ignore[attr-defined]
+                                 sigma_robot, seed)
+            if progress:
+                progress("uncertainty", j + 1, len(todo))
+    t4 = time.perf_counter()
+
+    if patch_dir is not None:
+        write_patches(results, frames, cache, patch_dir, manifest)
+    t5 = time.perf_counter()
+    for r in results:
+        r.__dict__.pop("_meas", None)
+        r.__dict__.pop("_tcp", None)
+    summary = summarize(results)
+    return BatchResult(manifest=manifest, entries=results, summary=summary,
+                       timings={"read": t1 - t0, "solve": t2 - t1, "diff": t3 - t2,
+                                "uncertainty": t4 - t3, "patch": t5 - t4,
+                                "controllers": len(cache.controllers),
+                                "measurements": len(cache.measurements)})
+
+
+def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch_dir: str,
+                  manifest: Manifest) -> None:
+    """Patched copies of the controller files under ``patch_dir``, at their
+    paths relative to the manifest (the originals are never touched). Every
+    *passing* entry's frame is written with its measured value (a rejected
+    dataset or a frame over tolerance is for a person to look at first); a
+    file with several passing entries gets all of them in one copy. Each
+    frame goes through ``ucsio.patch.patch_frame`` (its refusals and
+    read-back check); a refusal is the entry's ``patch_error``, and that
+    file's copy is not written."""
+    from . import patch as patcher
+
+    by_file: dict[str, list[tuple[int, EntryResult]]] = {}
+    for k, r in enumerate(results):
+        if r.passed:
+            by_file.setdefault(r.entry.controller, []).append((k, r))
+    base = Path(manifest.path).resolve().parent
+    out_root = Path(patch_dir)
+    for path, items in by_file.items():
+        cf = cache.controller(path)
+        try:
+            rel = Path(path).resolve().relative_to(base)
+        except ValueError:
+            rel = Path(Path(path).name)
+        target = out_root / rel
+        problem = None
+        planned = []
+        seen: dict[int, str] = {}
+        for k, r in items:
+            frame = frames[k][1]
+            if id(frame) in seen:
+                problem = (f"entries {seen[id(frame)]!r} and {r.entry.name!r} both measure "
+                           f"{frame.name}; not patched")
+                break
+            seen[id(frame)] = r.entry.name
+            try:
+                planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose))
+            except UcsioError as exc:
+                problem = f"{r.entry.name}: {exc}"
+                break
+        try:
+            if problem is None:
+                edits = [e for pr in planned for e in patcher.edits_for(pr.frame, pr.changes)]
+                new = cf.document.edited_bytes(edits)
+                _verify_combined(cf, new, planned)
+                if target.resolve() == Path(path).resolve():
+                    raise UcsioError("--patch-dir would overwrite the original", file=path)
+                target.parent.mkdir(parents=True, exist_ok=True)
+                mode = os.stat(path).st_mode & 0o7777
+                patcher.atomic_write(target, new, mode)
+        except UcsioError as exc:
+            problem = str(exc)
+        except OSError as exc:
+            problem = f"cannot write {target}: {exc.strerror or exc}"
+        for _, r in items:
+            if problem is None:
+                r.patched = str(target)
+            else:
+                r.patch_error = problem
+
+
+def _verify_combined(cf, new: bytes, planned) -> None:
+    """Each frame was verified alone by ``patch_frame``; parse the bytes with
+    all of them applied once more and check every frame reads back."""
+    from . import patch as patcher
+    from .controller import parse
+    from .document import Document
+    from .rotations import quat_angle
+
+    again = parse(Document(new, cf.path))
+    for pr in planned:
+        p = again.frame(pr.frame.name).pose
+        if p is None or any(abs(a - b) > patcher.READBACK_TRANS for a, b in zip(p.t, pr.pose.t)) \
+                or quat_angle(p.q, pr.pose.q) > patcher.READBACK_ANGLE_DEG:
+            raise UcsioError(f"internal error: {pr.frame.name} does not read back from the "
+                             "patched copy", file=cf.path)
+
+
+# ---------------------------------------------------------------- summary
+
+def _pearson(a: Sequence[float], b: Sequence[float]) -> float | None:
+    if len(a) < 2:
+        return None
+    x = np.asarray(a, dtype=float)
+    y = np.asarray(b, dtype=float)
+    dx, dy = x - x.mean(), y - y.mean()
+    den = math.sqrt(float(dx @ dx) * float(dy @ dy))
+    if den == 0.0 or not math.isfinite(den):
+        return None
+    return float(dx @ dy) / den
+
+
+def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
+    total = len(results)
+    passed = sum(r.passed for r in results)
+    errors = sum(r.error is not None for r in results)
+    rejected = sum(r.error is None and r.solution is not None and not r.solution.accepted
+                   for r in results)
+    accepted = [r for r in results if r.accepted and r.delta is not None]
+    groups = []
+    for g in range(1, N_GROUPS + 1):
+        es = [r.e for r in accepted if r.group == g]
+        count = len(es)
+        groups.append({
+            "group": g,
+            "range": [0.0 if g == 1 else GROUP_BOUNDS[g - 2],
+                      GROUP_BOUNDS[g - 1] if g <= len(GROUP_BOUNDS) else None],
+            "count": count,
+            "percent": 100.0 * count / total if total else 0.0,
+            "mean_e": float(np.mean(es)) if count else None,
+            "std_e": float(np.std(es, ddof=1)) if count >= 2 else None,
+            "passed": sum(r.passed for r in accepted if r.group == g),
+        })
+    passing = [r for r in results if r.passed]
+    corr = {axis: _pearson([getattr(r.simulated, axis) for r in passing],
+                           [getattr(r.measured, axis) for r in passing]) for axis in "xyz"}
+    es_all = [r.e for r in accepted]
+    return {
+        "total": total, "passed": passed, "rejected": rejected, "errors": errors,
+        "over_tolerance": len(accepted) - passed, "accepted": len(accepted),
+        "success_rate": passed / total if total else 0.0,
+        "groups": groups,
+        "mean_e": float(np.mean(es_all)) if es_all else None,
+        "std_e": float(np.std(es_all, ddof=1)) if len(es_all) >= 2 else None,
+        "correlation": corr,
+        "patched": sum(r.patched is not None for r in results),
+        "patch_errors": sum(r.patch_error is not None for r in results),
+        "std_convention": "sample (n-1); null below 2 entries",
+    }
+
+
+# ---------------------------------------------------------------- CSV
+
+CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "dx", "dy", "dz",
+               "da", "db", "dc", "angle", "dist", "x", "y", "z", "a", "b", "c",
+               "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "tolerance",
+               "measurement", "controller", "frame", "error")
+
+
+def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
+    rows = []
+    for r in results:
+        d = r.delta or {}
+        m = r.measured
+        s = r.solution if r.error is None else None
+        row = {"name": r.entry.name, "status": r.status, "accepted": r.accepted,
+               "pass": r.passed, "e": r.e, "dt_mean": r.dt_mean, "group": r.group,
+               "tolerance": r.entry.tolerance, "measurement": r.entry.measurement,
+               "controller": r.entry.controller, "frame": r.entry.frame, "error": r.error or ""}
+        for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist"):
+            row[k] = d.get(k)
+        if m is not None:
+            row.update(zip(("x", "y", "z", "a", "b", "c"), (m.x, m.y, m.z, *m.abc)))
+            row.update(zip(("q1", "q2", "q3", "q4"), m.q))
+        if s is not None:
+            row.update({"n_points": s.n_points, "n_used": s.n_used, "rms": s.rms, "max": s.max})
+        rows.append([row.get(c) for c in CSV_COLUMNS])
+    return rows
+
+
+def write_csv(results: Sequence[EntryResult], path: str) -> None:
+    import csv
+    import io
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(CSV_COLUMNS)
+    for row in csv_rows(results):
+        w.writerow(["" if v is None else ("true" if v is True else "false" if v is False
+                                          else repr(v) if isinstance(v, float) else v)
+                    for v in row])
+    _write_text_atomic(path, buf.getvalue())
+
+
+def _write_text_atomic(path: str, text: str) -> None:
+    import tempfile
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".ucsio-", suffix=".tmp", dir=folder)
+    try:
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)       # a new file's usual mode, not mkstemp's 0600
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise

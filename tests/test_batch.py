@@ -1,0 +1,471 @@
+"""ucsio batch: manifest, batched solving, the group summary, CSV, patched
+copies, on a synthetic fleet with known truth (fixtures/fleet/make_fleet.py,
+generated into a temporary folder)."""
+from __future__ import annotations
+
+import csv
+import hashlib
+import importlib.util
+import io
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ucsio import batch as B
+from ucsio.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _load_make_fleet():
+    spec = importlib.util.spec_from_file_location("make_fleet", ROOT / "fixtures/fleet/make_fleet.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+make_fleet = _load_make_fleet()
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    dest = tmp_path_factory.mktemp("fleet")
+    truth = make_fleet.make_fleet(dest)
+    return dest, truth
+
+
+def run_cli(args, capsys):
+    code = main(args)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.fixture(scope="module")
+def fleet_json(fleet):
+    dest, truth = fleet
+    buf = io.StringIO()
+    old = sys.stdout
+    sys.stdout = buf
+    try:
+        code = main(["batch", str(dest / "manifest.toml"), "--json"])
+    finally:
+        sys.stdout = old
+    return code, json.loads(buf.getvalue())
+
+
+# ---------------------------------------------------------------- the fleet
+
+def test_fleet_is_big_and_spread(fleet):
+    _, truth = fleet
+    s = truth["summary"]
+    assert s["total"] >= 100
+    assert all(g["count"] > 0 for g in s["groups"])
+    assert s["rejected"] > 0 and s["errors"] > 0
+    vendors = {Path(e["controller"]).name for e in _manifest_entries(fleet[0])}
+    assert vendors == {"cell.mod", "$config.dat"}
+
+
+def _manifest_entries(dest):
+    import tomllib
+    return tomllib.loads((dest / "manifest.toml").read_text())["entry"]
+
+
+def test_generator_is_deterministic(tmp_path):
+    a = make_fleet.make_fleet(tmp_path / "a", groups=(3, 2, 1, 1, 1), rejected=1)
+    b = make_fleet.make_fleet(tmp_path / "b", groups=(3, 2, 1, 1, 1), rejected=1)
+    assert a == b
+    for p in (tmp_path / "a").rglob("*"):
+        if p.is_file() and p.name != "truth.json":
+            assert p.read_bytes() == (tmp_path / "b" / p.relative_to(tmp_path / "a")).read_bytes()
+
+
+def test_summary_matches_truth_exactly(fleet, fleet_json):
+    _, truth = fleet
+    code, data = fleet_json
+    assert code == 1                        # some entries fail: a gate failed
+    s, t = data["summary"], truth["summary"]
+    for key in ("total", "passed", "rejected", "errors"):
+        assert s[key] == t[key], key
+    assert s["success_rate"] == t["success_rate"] == s["passed"] / s["total"]
+    assert [g["group"] for g in s["groups"]] == [1, 2, 3, 4, 5]
+    for g, tg in zip(s["groups"], t["groups"]):
+        assert g["count"] == tg["count"]
+        assert g["percent"] == tg["percent"]
+    assert s["accepted"] == sum(g["count"] for g in s["groups"])
+
+
+def test_entries_match_truth(fleet, fleet_json):
+    _, truth = fleet
+    _, data = fleet_json
+    assert [e["name"] for e in data["entries"]] == [e["name"] for e in truth["entries"]]
+    for e, t in zip(data["entries"], truth["entries"]):
+        for key in ("name", "accepted", "e", "dt_mean", "group", "pass", "frame"):
+            assert key in e
+        assert e["pass"] == t["pass"], e["name"]
+        assert e["accepted"] == t["accepted"], e["name"]
+        if t["kind"] == "error":
+            assert e["status"] == "error" and e["error"], e["name"]
+            assert e["e"] is None and e["dt_mean"] is None and e["group"] is None
+            continue
+        assert "error" not in e
+        if t["kind"] == "rejected":
+            assert e["status"] == "rejected"
+            assert e["group"] is None and e["dt_mean"] is None
+            assert e["n_used"] < e["min_points"]
+            continue
+        assert e["group"] == t["group"], e["name"]
+        assert e["dt_mean"] == pytest.approx(t["dt_mean"], abs=0.1)
+        assert 0.02 < e["e"] < 0.2          # the noise the fleet was made with
+        for k in "xyz":
+            assert e["frame"][k] == pytest.approx(t["true"][k], abs=0.15)
+        assert sorted(p["name"] for p in e["points"] if not p["used"]) == sorted(t["excluded"])
+
+
+def test_every_way_to_fail_is_reported(fleet_json):
+    _, data = fleet_json
+    errors = {e["name"]: e for e in data["entries"] if e["status"] == "error"}
+    msgs = " | ".join(e["error"] for e in errors.values())
+    assert "no_such_file.csv" in msgs                        # missing measurement
+    assert "not a number: '12.3.4'" in msgs                  # bad CSV, with line and column
+    assert "R99" in msgs                                     # missing controller
+    assert "one line" in msgs                                # collinear points
+    assert "tool " in msgs                                   # unknown tool
+    assert "not terminated" in msgs or "BROKEN" in msgs      # a controller that does not parse
+    assert {e["stage"] for e in errors.values()} >= {"controller", "measurement", "tool", "solve"}
+
+
+def test_group_statistics(fleet_json):
+    _, data = fleet_json
+    acc = [e for e in data["entries"] if e["accepted"]]
+    for g in data["summary"]["groups"]:
+        es = [e["e"] for e in acc if e["group"] == g["group"]]
+        assert g["count"] == len(es)
+        assert g["mean_e"] == pytest.approx(np.mean(es))
+        assert g["std_e"] == pytest.approx(np.std(es, ddof=1))
+    passing = [e for e in data["entries"] if e["pass"]]
+    for k in "xyz":
+        r = np.corrcoef([e["simulated"][k] for e in passing], [e["frame"][k] for e in passing])[0, 1]
+        assert data["summary"]["correlation"][k] == pytest.approx(r)
+
+
+def test_batch_solutions_equal_solve(fleet):
+    """The batched solver gives what `ucsio solve` gives, entry by entry."""
+    from ucsio import solve
+    from ucsio.measurement import read_measurement
+
+    dest, _ = fleet
+    res = B.run_batch(B.read_manifest(dest / "manifest.toml"))
+    n = 0
+    for r in res.entries:
+        if r.solution is None or r.error:
+            continue
+        s = solve.solve(read_measurement(r.entry.measurement), r.solution.tcp,
+                        threshold=r.entry.threshold, min_points=r.entry.min_points,
+                        exclude=r.entry.exclude, no_exclusion=r.entry.no_exclusion)
+        a = r.solution
+        assert a.accepted == s.accepted and a.n_used == s.n_used
+        assert [p.used for p in a.points] == [p.used for p in s.points]
+        assert [p.excluded_by for p in a.points] == [p.excluded_by for p in s.points]
+        assert a.pose.t == pytest.approx(s.pose.t, abs=1e-9)
+        assert a.pose.q == pytest.approx(s.pose.q, abs=1e-12)
+        assert a.mean == pytest.approx(s.mean, abs=1e-9)
+        for p, q in zip(a.points, s.points):
+            assert p.residual == pytest.approx(q.residual, abs=1e-9)
+            if math.isfinite(q.loo_residual):
+                assert p.loo_residual == pytest.approx(q.loo_residual, abs=1e-9)
+        n += 1
+    assert n >= 95
+
+
+def test_solve_many_errors_like_solve():
+    from ucsio import solve
+    rng = np.random.default_rng(1)
+    laser = rng.uniform(-300, 300, size=(7, 3))
+    names = [f"P{i}" for i in range(7)]
+    line = np.outer(np.linspace(-1, 1, 7), (300.0, 100.0, 10.0))
+    ok = B.Dataset(names, laser, laser + 10.0, np.ones(7))
+    hand_bad = B.Dataset(names, laser, laser + 10.0, np.ones(7), exclude=("P9",))
+    collinear = B.Dataset(names, line, line + 5.0, np.ones(7))
+    out = B.solve_many([ok, hand_bad, collinear])
+    assert out[0].accepted and out[0].pose.t == pytest.approx((10.0, 10.0, 10.0))
+    with pytest.raises(Exception) as exc:
+        solve.solve_points(names, laser, laser + 10.0, exclude=("P9",))
+    assert str(out[1]) == str(exc.value)
+    with pytest.raises(Exception) as exc:
+        solve.solve_points(names, line, line + 5.0)
+    assert str(out[2]) == str(exc.value)
+
+
+def test_one_horn_call_per_round_and_one_parse_per_file(fleet, monkeypatch):
+    import ucsio.controller
+    import ucsio.horn
+
+    dest, truth = fleet
+    calls = []
+    real = ucsio.horn.horn_batch
+    monkeypatch.setattr(ucsio.horn, "horn_batch", lambda *a, **k: calls.append(len(a[0])) or real(*a, **k))
+    loads = []
+    real_load = ucsio.controller.load
+    monkeypatch.setattr(ucsio.controller, "load", lambda p, *a, **k: loads.append(p) or real_load(p, *a, **k))
+    res = B.run_batch(B.read_manifest(dest / "manifest.toml"))
+    most_excluded = max(sum(p.excluded_by == "auto" for p in r.solution.points)
+                        for r in res.entries if r.solution is not None)
+    assert len(calls) == 1 + most_excluded <= 4             # rounds, not entries
+    assert calls[0] > len(res.entries)                      # every full and leave-one-out fit at once
+    assert len(loads) == len(set(loads))                    # each controller file parsed once
+    assert res.timings["controllers"] == len(set(r.entry.controller for r in res.entries))
+
+
+def test_padding_budget_buckets_by_point_count(monkeypatch):
+    monkeypatch.setattr(B, "PAD_BUDGET", 10)
+    rng = np.random.default_rng(2)
+    data = []
+    for n in (6, 7, 20):
+        laser = rng.uniform(-300, 300, size=(n, 3))
+        data.append(B.Dataset([f"P{i}" for i in range(n)], laser,
+                              laser + 3.0 + rng.normal(scale=0.01, size=(n, 3)), np.ones(n)))
+    out = B.solve_many(data)
+    assert all(s.accepted for s in out)
+    assert all(s.pose.t == pytest.approx((3, 3, 3), abs=0.05) for s in out)
+
+
+def test_no_scipy_import(fleet):
+    dest, _ = fleet
+    code = ("import sys; from ucsio.cli import main; "
+            f"rc = main(['batch', {str(dest / 'manifest.toml')!r}, '--json']); "
+            "assert 'scipy' not in sys.modules, 'scipy imported'; sys.exit(0)")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
+# ---------------------------------------------------------------- output
+
+def test_table_output(fleet, capsys):
+    dest, truth = fleet
+    code, out, err = run_cli(["batch", str(dest / "manifest.toml")], capsys)
+    assert code == 1
+    assert err == ""                                          # no progress bar: not a terminal
+    assert "success rate" in out and "group" in out
+    assert f"total {truth['summary']['total']}" in out
+
+
+def test_progress_bar_only_on_a_terminal(fleet, capsys, monkeypatch):
+    dest, _ = fleet
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty = Tty()
+    monkeypatch.setattr(sys, "stderr", tty)
+    main(["batch", str(dest / "manifest.toml"), "--json"])
+    out = capsys.readouterr().out
+    assert "[####" in tty.getvalue()
+    json.loads(out)                                           # stdout stays pure JSON
+
+
+def test_csv(fleet, fleet_json, tmp_path, capsys):
+    dest, _ = fleet
+    out = tmp_path / "fleet.csv"
+    run_cli(["batch", str(dest / "manifest.toml"), "--csv", str(out)], capsys)
+    rows = list(csv.DictReader(out.open(encoding="utf-8")))
+    _, data = fleet_json
+    assert len(rows) == len(data["entries"])
+    for row, e in zip(rows, data["entries"]):
+        assert row["name"] == e["name"] and row["status"] == e["status"]
+        assert row["pass"] == ("true" if e["pass"] else "false")
+        if e["dt_mean"] is None:
+            assert row["dt_mean"] == ""
+        else:
+            assert float(row["dt_mean"]) == e["dt_mean"]
+            assert int(row["group"]) == e["group"]
+        assert (row["error"] != "") == (e["status"] == "error")
+
+
+def test_all_pass_exits_0(fleet, tmp_path, capsys):
+    dest, truth = fleet
+    good = [t["name"] for t in truth["entries"] if t["pass"]][:12]
+    entries = [e for e in _manifest_entries(dest) if e["name"] in good]
+    text = ["[defaults]", "tcp = [-20.67, 89.73, 33.44]", ""]
+    for e in entries:
+        text.append("[[entry]]")
+        for k, v in e.items():
+            v = str(dest / v) if k in ("measurement", "controller") else v
+            if k == "tool":
+                v = str(dest / v)
+            text.append(f"{k} = {json.dumps(v)}")
+    m = tmp_path / "good.toml"
+    m.write_text("\n".join(text) + "\n")
+    code, out, _ = run_cli(["batch", str(m), "--json"], capsys)
+    s = json.loads(out)["summary"]
+    assert code == 0 and s["passed"] == s["total"] == 12 and s["success_rate"] == 1.0
+
+
+def test_uncertainty(fleet, tmp_path, capsys):
+    dest, truth = fleet
+    name = next(t["name"] for t in truth["entries"] if t["pass"])
+    e = next(e for e in _manifest_entries(dest) if e["name"] == name)
+    m = tmp_path / "one.toml"
+    m.write_text(f"[defaults]\ntcp = [-20.67, 89.73, 33.44]\n[[entry]]\nname = {json.dumps(name)}\n"
+                 + "".join(f"{k} = {json.dumps(str(dest / v) if k in ('measurement', 'controller', 'tool') else v)}\n"
+                           for k, v in e.items() if k != "name"))
+    code, out, _ = run_cli(["batch", str(m), "--json", "--uncertainty", "200"], capsys)
+    u = json.loads(out)["entries"][0]["uncertainty"]
+    assert u["samples"] == 200
+    assert set(u["std"]) >= {"x", "y", "z", "angle"} and set(u["ci95"]) >= {"x", "y", "z", "angle"}
+    assert 0.005 < u["std"]["x"] < 0.2
+
+
+# ---------------------------------------------------------------- patched copies
+
+def _digest(folder: Path) -> dict:
+    return {p: hashlib.sha256(p.read_bytes()).hexdigest() for p in folder.rglob("*") if p.is_file()}
+
+
+def test_patch_dir_writes_copies_only(fleet, fleet_json, tmp_path, capsys):
+    import ucsio
+
+    dest, _ = fleet
+    before = _digest(dest)
+    out = tmp_path / "patched"
+    code, text, _ = run_cli(["batch", str(dest / "manifest.toml"), "--json", "--patch-dir", str(out)],
+                            capsys)
+    assert _digest(dest) == before                           # originals untouched
+    data = json.loads(text)
+    assert data["summary"]["patch_errors"] == 0
+    passing = [e for e in data["entries"] if e["pass"]]
+    assert data["summary"]["patched"] == len(passing)
+    for e in passing:
+        copy = Path(e["patched"])
+        assert copy.is_file() and out in copy.parents
+        f = ucsio.load(copy).frame(e["frame_name"])
+        for k in "xyz":
+            assert getattr(f.pose, k) == pytest.approx(e["frame"][k], abs=0.0006)
+    for e in data["entries"]:
+        if not e["pass"]:
+            assert "patched" not in e
+
+
+# ---------------------------------------------------------------- the manifest
+
+def _bad(tmp_path, capsys, text):
+    m = tmp_path / "m.toml"
+    m.write_text(text)
+    code, out, err = run_cli(["batch", str(m)], capsys)
+    assert code == 2 and out == ""
+    assert err.startswith("ucsio: ") and str(m) in err and err.count("\n") == 1
+    return err
+
+
+ENTRY = 'measurement = "a.csv"\ncontroller = "c.mod"\nframe = "wobj1"\n'
+
+
+def test_duplicate_name(tmp_path, capsys):
+    err = _bad(tmp_path, capsys, f'[[entry]]\nname = "R01"\n{ENTRY}[[entry]]\nname = "r01"\n{ENTRY}')
+    assert "duplicate entry name 'r01'" in err
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[[entry]]\nname = 'x'\nmeasurment = 'a.csv'\n", "unknown key 'measurment'"),
+    ("[[entry]\nname = 'x'\n", "not valid TOML"),
+    (f"[[entry]]\n{ENTRY}", "needs a name"),
+    (f"[[entry]]\nname = 'x'\ntcp = [1, 2]\n{ENTRY}", "tcp must be a list of three numbers"),
+    (f"[[entry]]\nname = 'x'\ntcp = [1, 2, 3]\ntool = 'c.mod:t'\n{ENTRY}", "either tcp or tool"),
+    (f"[[entry]]\nname = 'x'\ntool = 'tool1'\n{ENTRY}", "FILE:NAME"),
+    (f"[[entry]]\nname = 'x'\nmin_points = 2\n{ENTRY}", "min_points"),
+    (f"[[entry]]\nname = 'x'\nthreshold = -1\n{ENTRY}", "threshold must be positive"),
+    ("[[entry]]\nname = 'x'\nmeasurement = 'a.csv'\n", "needs controller"),
+    ("[defaults]\nname = 'x'\n", "unknown key 'name'"),
+    ("[defaults]\ntcp = [0, 0, 0]\n", "no [[entry]]"),
+])
+def test_bad_manifest(tmp_path, capsys, text, words):
+    assert words in _bad(tmp_path, capsys, text)
+
+
+def test_missing_manifest(tmp_path, capsys):
+    code, _, err = run_cli(["batch", str(tmp_path / "nope.toml")], capsys)
+    assert code == 2 and "nope.toml" in err
+
+
+def test_defaults_and_paths(tmp_path):
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub/m.toml").write_text(
+        "[defaults]\ntool = 'cells/r1.mod:tool1'\nthreshold = 2.0\ntolerance = 50\n"
+        "exclude = ['P3']\n"
+        f"[[entry]]\nname = 'a'\n{ENTRY}"
+        f"[[entry]]\nname = 'b'\ntcp = [1, 2, 3]\nthreshold = 1.0\nexclude = []\n{ENTRY}"
+        "[[entry]]\nname = 'c'\nmeasurement = '/abs/x.csv'\ncontroller = 'C:/x.mod'\nframe = 'f'\n"
+        "tool = 'C:/x.mod:t'\n")
+    m = B.read_manifest(tmp_path / "sub/m.toml")
+    a, b, c = m.entries
+    assert a.tool == f"{tmp_path / 'sub/cells/r1.mod'}:tool1" and a.tcp is None
+    assert a.threshold == 2.0 and a.tolerance == 50.0 and a.exclude == ("P3",)
+    assert a.measurement == str(tmp_path / "sub/a.csv")
+    assert b.tool is None and b.tcp == (1.0, 2.0, 3.0) and b.threshold == 1.0 and b.exclude == ()
+    assert c.measurement == "/abs/x.csv" and c.tool.endswith(":t")
+
+
+# ---------------------------------------------------------------- summary math
+
+def test_summarize_conventions():
+    from types import SimpleNamespace as NS
+
+    from ucsio.frames import Pose
+
+    def res(group, e, passed=True, accepted=True, error=None, x=0.0):
+        r = B.EntryResult(entry=None)
+        r.solution = NS(accepted=accepted, mean=e) if error is None else None
+        r.error = error
+        if accepted and error is None:
+            r.delta = {"group": group, "dt_mean": 1.0, "pass": passed}
+            r.simulated = Pose.from_quat(x, 2 * x, 0.0, (1, 0, 0, 0))
+            r.measured = Pose.from_quat(x + 1, 2 * x - 1, 0.0, (1, 0, 0, 0))
+        return r
+
+    rs = [res(1, 0.1, x=1), res(1, 0.3, x=2), res(2, 0.2, x=3), res(5, 0.5, passed=False),
+          res(None, 0.4, accepted=False), res(None, None, accepted=False, error="boom")]
+    s = B.summarize(rs)
+    assert (s["total"], s["passed"], s["rejected"], s["errors"]) == (6, 3, 1, 1)
+    assert s["success_rate"] == 0.5
+    g = {x["group"]: x for x in s["groups"]}
+    assert g[1]["count"] == 2 and g[1]["mean_e"] == pytest.approx(0.2)
+    assert g[1]["std_e"] == pytest.approx(math.sqrt(0.02))          # sample std, n - 1
+    assert g[2]["count"] == 1 and g[2]["std_e"] is None              # below 2: null
+    assert g[3]["count"] == 0 and g[3]["mean_e"] is None
+    assert g[5]["percent"] == pytest.approx(100 / 6)
+    assert s["correlation"]["x"] == pytest.approx(1.0) and s["correlation"]["y"] == pytest.approx(1.0)
+    assert s["correlation"]["z"] is None                             # no variation
+
+
+def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
+    """An ABB object frame is relative to its user frame: the measured UCS
+    (robot world) is expressed there before the diff."""
+    from ucsio.frames import Pose
+
+    U = Pose.from_abc(1000.0, 200.0, 300.0, 90.0, 0.0, 0.0)
+    O_true = Pose.from_abc(50.0, 20.0, 5.0, 10.0, 0.0, 0.0)
+    world = U.compose(O_true)
+    q = ",".join(f"{v:.6f}" for v in U.q)
+    (tmp_path / "cell.mod").write_text(
+        "MODULE cell\n  PERS wobjdata wobj1 := [FALSE,TRUE,\"\",[[1000,200,300],[" + q + "]],"
+        "[[40,20,5],[1,0,0,0]]];\nENDMODULE\n")
+    laser = [(0, 0, 0), (500, 0, 0), (0, 400, 0), (500, 400, 0), (0, 0, 200), (500, 400, 200)]
+    lines = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_q1,robot_q2,robot_q3,robot_q4"]
+    for i, p in enumerate(laser):
+        r = world.apply(p)
+        lines.append(f"P{i + 1},{p[0]},{p[1]},{p[2]},{r[0]:.6f},{r[1]:.6f},{r[2]:.6f},1,0,0,0")
+    (tmp_path / "m.csv").write_text("\n".join(lines) + "\n")
+    (tmp_path / "m.toml").write_text(
+        "[[entry]]\nname = 'o'\nmeasurement = 'm.csv'\ncontroller = 'cell.mod'\n"
+        "frame = 'wobj1.oframe'\n")
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
+    e = json.loads(out)["entries"][0]
+    assert code == 0 and e["pass"]
+    assert (e["frame"]["x"], e["frame"]["y"], e["frame"]["z"]) == pytest.approx((50, 20, 5), abs=1e-5)
+    assert e["frame"]["a"] == pytest.approx(10.0, abs=1e-6)
+    assert e["dt_mean"] == pytest.approx(10.0 / 3, abs=1e-5)

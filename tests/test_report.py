@@ -1,0 +1,185 @@
+"""ucsio batch --report: one self-contained HTML file whose numbers are the
+JSON's, and which a browser renders (headless Chromium, where installed)."""
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import re
+import shutil
+import struct
+import subprocess
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+from ucsio.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+CHROMIUM = "/usr/bin/chromium"
+
+
+def _make_fleet():
+    spec = importlib.util.spec_from_file_location("make_fleet", ROOT / "fixtures/fleet/make_fleet.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.make_fleet
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    dest = tmp_path_factory.mktemp("fleet")
+    _make_fleet()(dest)
+    html_path = dest / "report.html"
+    json_path = dest / "out.json"
+    import contextlib
+    import io
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code = main(["batch", str(dest / "manifest.toml"), "--json", "--report", str(html_path)])
+    assert code == 1
+    json_path.write_text(buf.getvalue())
+    return html_path, json.loads(buf.getvalue())
+
+
+class _Collect(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.tags: list[tuple[str, dict]] = []
+        self.script: dict[str, str] = {}
+        self._in = None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        self.tags.append((tag, a))
+        if tag == "script":
+            self._in = a.get("id")
+            self.script[self._in] = ""
+
+    def handle_endtag(self, tag):
+        if tag == "script":
+            self._in = None
+
+    def handle_data(self, data):
+        if self._in is not None:
+            self.script[self._in] += data
+
+
+def _parse(path: Path) -> _Collect:
+    p = _Collect()
+    p.feed(path.read_text(encoding="utf-8"))
+    return p
+
+
+def _num(s: str):
+    return None if s == "" else float(s)
+
+
+def test_embedded_json_is_the_json_output(report):
+    path, data = report
+    p = _parse(path)
+    embedded = json.loads(p.script["ucsio-data"])
+    assert embedded == data
+
+
+def test_summary_numbers_in_html(report):
+    path, data = report
+    p = _parse(path)
+    s = data["summary"]
+    cards = {a["data-key"]: a["data-value"] for t, a in p.tags if "data-key" in a}
+    for key in ("total", "passed", "rejected", "errors", "over_tolerance"):
+        assert int(cards[key]) == s[key]
+    assert float(cards["success_rate"]) == s["success_rate"]
+    groups = [a for t, a in p.tags if t == "tr" and a.get("class") == "group"]
+    assert len(groups) == 5
+    for a, g in zip(groups, s["groups"]):
+        assert int(a["data-group"]) == g["group"]
+        assert int(a["data-count"]) == g["count"]
+        assert float(a["data-percent"]) == g["percent"]
+        assert _num(a["data-mean-e"]) == g["mean_e"]
+        assert _num(a["data-std-e"]) == g["std_e"]
+    corr = next(a for t, a in p.tags if a.get("id") == "correlation")
+    for k in "xyz":
+        assert _num(corr[f"data-{k}"]) == s["correlation"][k]
+
+
+def test_entry_rows_in_html(report):
+    path, data = report
+    p = _parse(path)
+    rows = [a for t, a in p.tags if t == "tr" and a.get("class") == "entry"]
+    assert len(rows) == len(data["entries"])
+    for a, e in zip(rows, data["entries"]):
+        assert a["data-name"] == e["name"] and a["data-status"] == e["status"]
+        assert _num(a["data-dt-mean"]) == e["dt_mean"]
+        assert _num(a["data-e"]) == e["e"]
+        assert a["data-group"] == ("" if e["group"] is None else str(e["group"]))
+        assert a["data-pass"] == ("true" if e["pass"] else "false")
+    bars = [a for t, a in p.tags if a.get("class") == "ebar"]
+    assert [b["data-name"] for b in bars] == [e["name"] for e in data["entries"] if e["e"] is not None]
+
+
+def test_histogram(report):
+    path, data = report
+    p = _parse(path)
+    bins = [a for t, a in p.tags if t == "rect" and a.get("class") == "bin"]
+    accepted = [e for e in data["entries"] if e["dt_mean"] is not None]
+    assert sum(int(b["data-count"]) for b in bins) == len(accepted)
+    bounds = [float(a["data-mm"]) for t, a in p.tags if a.get("class") == "boundary"]
+    assert bounds == [10.0, 25.0, 50.0, 100.0]
+
+
+def test_self_contained(report):
+    path, _ = report
+    text = path.read_text(encoding="utf-8")
+    p = _parse(path)
+    assert not [a for t, a in p.tags if t in ("link", "img", "iframe", "object", "embed")]
+    assert not [a for t, a in p.tags if t == "script" and "src" in a]
+    assert [a.get("type") for t, a in p.tags if t == "script"] == ["application/json"]
+    urls = set(re.findall(r"https?://[^\s\"'<>)]+", text))
+    assert urls <= {"http://www.w3.org/2000/svg"}          # the SVG namespace is not a fetch
+    assert "Content-Security-Policy" in text
+    assert text.count("<svg") >= 2
+
+
+def test_names_are_escaped(tmp_path):
+    from ucsio.report import render_report
+    data = {"manifest": "m.toml", "summary": {
+        "total": 1, "passed": 0, "rejected": 0, "errors": 1, "over_tolerance": 0,
+        "success_rate": 0.0, "correlation": {"x": None, "y": None, "z": None},
+        "groups": [{"group": g, "range": [0, None], "count": 0, "percent": 0.0, "mean_e": None,
+                    "std_e": None} for g in range(1, 6)]},
+        "entries": [{"name": "<b>x</b></script>", "status": "error", "accepted": False, "e": None,
+                     "dt_mean": None, "group": None, "pass": False, "frame": None,
+                     "error": "bad & <worse>", "frame_name": "f", "controller": "c.mod"}]}
+    html = render_report(data)
+    assert "<b>x</b>" not in html and "&lt;b&gt;x&lt;/b&gt;" in html
+    assert "</script>\"" not in html                         # the JSON cannot end the script early
+    p = _Collect()
+    p.feed(html)
+    assert json.loads(p.script["ucsio-data"]) == data
+
+
+def _png_size(path: Path) -> tuple[int, int]:
+    head = path.read_bytes()[:24]
+    assert head[:8] == b"\x89PNG\r\n\x1a\n"
+    return struct.unpack(">II", head[16:24])
+
+
+@pytest.mark.skipif(not os.path.exists(CHROMIUM),
+                    reason=f"{CHROMIUM} not installed: the report is not rendered in a browser here")
+def test_chromium_renders_report(report, tmp_path):
+    path, _ = report
+    png = tmp_path / "report.png"
+    cmd = [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+           "--no-first-run", "--disable-background-networking", "--disable-component-update",
+           "--disable-sync", f"--user-data-dir={tmp_path / 'profile'}", f"--screenshot={png}",
+           "--window-size=1200,2000", path.resolve().as_uri()]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    assert png.exists(), r.stderr[-2000:]
+    assert _png_size(png) == (1200, 2000)
+    # a blank page compresses to a few kB; charts, tables and text do not
+    assert png.stat().st_size > 50_000
+    keep = os.environ.get("UCSIO_KEEP_SCREENSHOT")
+    if keep:
+        shutil.copy(png, keep)
