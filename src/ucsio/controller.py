@@ -6,36 +6,35 @@ KUKA ``.dat`` and an ABB ``.mod`` go to the right parser.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from .document import Document, looks_binary
 from .errors import UcsioError
 from .frames import Frame
+from .values import Value
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
 
 
-@dataclass(frozen=True)
-class Lint:
-    line: int
-    col: int
-    code: str
-    message: str
+class Lint(Value):
+    __slots__ = ("line", "col", "code", "message")
+
+    def __init__(self, line: int, col: int, code: str, message: str):
+        self.line, self.col, self.code, self.message = line, col, code, message
 
     def as_dict(self) -> dict:
         return {"line": self.line, "col": self.col, "code": self.code, "message": self.message}
 
 
-@dataclass
 class ControllerFile:
-    document: Document
-    vendor: str
-    frames: list[Frame] = field(default_factory=list)
-    lints: list[Lint] = field(default_factory=list)
-    # vendor-specific extras (KUKA tables, ABB declarations); parsers fill them.
-    extra: dict = field(default_factory=dict)
+    def __init__(self, document: Document, vendor: str):
+        self.document = document
+        self.vendor = vendor
+        self.frames: list[Frame] = []
+        self.lints: list[Lint] = []
+        # vendor-specific extras (KUKA tables, ABB declarations); parsers fill them.
+        self.extra: dict = {}
 
     @property
     def path(self) -> str:

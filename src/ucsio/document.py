@@ -16,28 +16,32 @@ from __future__ import annotations
 
 import bisect
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import UcsioError
+from .values import Value
 
 BOM = b"\xef\xbb\xbf"
 
 
-@dataclass(frozen=True)
-class Span:
+class Span(Value):
     """A half-open character range [start, end) in a document's text."""
 
-    start: int
-    end: int
+    __slots__ = ("start", "end")
+
+    def __init__(self, start: int, end: int):
+        self.start = start
+        self.end = end
 
 
-@dataclass(frozen=True)
-class Edit:
+class Edit(Value):
     """Replace the text of ``span`` with ``text``."""
 
-    span: Span
-    text: str
+    __slots__ = ("span", "text")
+
+    def __init__(self, span: Span, text: str):
+        self.span = span
+        self.text = text
 
 
 class Document:

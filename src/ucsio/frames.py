@@ -6,23 +6,21 @@ numbers, so the patcher can replace exactly those and nothing else.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 from . import rotations as rot
 from .document import Document, Span
+from .values import Value
 
 
-@dataclass(frozen=True)
-class Pose:
+class Pose(Value):
     """p_parent = R p_frame + t. ``q`` is canonical (w >= 0); ``abc`` is
     KUKA's A, B, C as written where the source gave them, else derived."""
 
-    x: float
-    y: float
-    z: float
-    q: rot.Quat
-    abc: tuple[float, float, float]
+    __slots__ = ("x", "y", "z", "q", "abc")
+
+    def __init__(self, x: float, y: float, z: float, q: rot.Quat, abc: tuple[float, float, float]):
+        self.x, self.y, self.z, self.q, self.abc = x, y, z, tuple(q), tuple(abc)
 
     @classmethod
     def from_quat(cls, x, y, z, q) -> "Pose":
@@ -70,29 +68,39 @@ class Pose:
                 "q": list(self.q)}
 
 
-@dataclass(frozen=True)
-class Number:
+class Number(Value):
     """One numeric component as written: its span (sign included) and text."""
 
-    span: Span
-    text: str
-    value: float
+    __slots__ = ("span", "text", "value")
+
+    def __init__(self, span: Span, text: str, value: float):
+        self.span, self.text, self.value = span, text, value
 
 
-@dataclass
-class Frame:
-    name: str                 # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]'
-    vendor: str               # 'abb' | 'kuka'
-    type: str                 # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA', 'FRAME'
-    pose: Pose | None         # None where the file gives no (complete) value
-    file: str
-    line: int
-    reference: str = "world"  # 'world', 'flange', 'uframe', 'wrist', 'machine', ...
-    label: str | None = None  # KUKA BASE_NAME / TOOL_NAME
-    # component name ('x','y','z','q1'..'q4' or 'a','b','c') -> Number in the document
-    numbers: dict[str, Number] = field(default_factory=dict)
-    info: dict[str, Any] = field(default_factory=dict)   # robhold, ufprog, ufmec, load, storage, ...
-    document: Document | None = field(default=None, repr=False, compare=False)
+class Frame(Value):
+    __slots__ = ("name", "vendor", "type", "pose", "file", "line", "reference", "label",
+                 "numbers", "info", "document")
+    _compare = __slots__[:-1]   # the document is where it came from, not what it is
+
+    def __init__(self, name: str, vendor: str, type: str, pose: Pose | None, file: str, line: int,
+                 reference: str = "world", label: str | None = None,
+                 numbers: dict[str, Number] | None = None, info: dict[str, Any] | None = None,
+                 document: Document | None = None):
+        self.name = name            # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]'
+        self.vendor = vendor        # 'abb' | 'kuka'
+        self.type = type            # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA', 'FRAME'
+        self.pose = pose            # None where the file gives no (complete) value
+        self.file = file
+        self.line = line
+        self.reference = reference  # 'world', 'flange', 'uframe', 'wrist', 'machine', ...
+        self.label = label          # KUKA BASE_NAME / TOOL_NAME
+        # component name ('x','y','z','q1'..'q4' or 'a','b','c') -> Number in the document
+        self.numbers = numbers if numbers is not None else {}
+        self.info = info if info is not None else {}   # robhold, ufprog, ufmec, load, storage, ...
+        self.document = document
+
+    def __repr__(self) -> str:
+        return f"Frame({self.name!r}, {self.vendor}, {self.type}, {self.pose!r}, {self.file}:{self.line})"
 
     @property
     def names(self) -> list[str]:

@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import bisect
 import re
-from dataclasses import dataclass
 
 from .controller import ControllerFile
 from .document import Document, Span
 from .frames import Frame, Number, Pose
+from .values import Value
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
@@ -60,10 +60,11 @@ _NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*")
 _RADIX = re.compile(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
 
 
-@dataclass(frozen=True)
-class Region:
-    kind: str
-    span: Span
+class Region(Value):
+    __slots__ = ("kind", "span")
+
+    def __init__(self, kind: str, span: Span):
+        self.kind, self.span = kind, span
 
 
 def outline(doc: Document) -> list[Region]:
@@ -266,17 +267,15 @@ def _nice(names: list[str]) -> str:
 
 
 # -- declarations -> frames ---------------------------------------------------------
-@dataclass
-class Decl:
-    scope: str | None
-    storage: str
-    type: str
-    name: str
-    dims: list | None
-    value: object | None     # converted value tree (see _value)
-    start: int
-    end: int
-    module: str
+class Decl(Value):
+    """A module-level data declaration; ``value`` is the converted value tree
+    (Number, bool, str, list, or _Expr for anything computed)."""
+
+    __slots__ = ("scope", "storage", "type", "name", "dims", "value", "start", "end", "module")
+
+    def __init__(self, scope, storage, type, name, dims, value, start, end, module):
+        self.scope, self.storage, self.type, self.name = scope, storage, type, name
+        self.dims, self.value, self.start, self.end, self.module = dims, value, start, end, module
 
 
 class _Expr:
