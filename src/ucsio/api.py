@@ -16,7 +16,6 @@ A ``solution`` argument may be a ``Pose``, a solve result (anything with a
 """
 from __future__ import annotations
 
-import json
 import os
 from typing import Any
 
@@ -26,6 +25,7 @@ from .diff import DEFAULT_TOLERANCE
 from .errors import UcsioError
 from .frames import Frame, Pose
 from .patch import PatchResult
+from .solution import load_solution, pose_from_json
 
 PathLike = str | os.PathLike
 
@@ -63,34 +63,7 @@ def read_solution(path: PathLike, allow_rejected: bool = False) -> Pose:
     """The frame of a SOLUTION.json (``{"frame": {x, y, z, a, b, c, q}}``) or
     of a bare ``{x, y, z, a, b, c | q}`` object. A rejected dataset's
     solution is refused unless ``allow_rejected``."""
-    try:
-        from .solve import load_solution
-    except ImportError:  # pragma: no cover - the solver ships with ucsio
-        return _read_solution(path, allow_rejected)
     return load_solution(path, allow_rejected=allow_rejected)
-
-
-def _read_solution(path: PathLike, allow_rejected: bool = False) -> Pose:
-    path = os.fspath(path)
-    try:
-        with open(path, encoding="utf-8-sig") as fh:
-            data = json.load(fh)
-    except OSError as exc:
-        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
-    except json.JSONDecodeError as exc:
-        raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno) from None
-    if not isinstance(data, dict):
-        raise UcsioError("expected a JSON object", file=path)
-    if data.get("accepted") is False and not allow_rejected:
-        raise UcsioError("this solution's dataset was rejected: measure again", file=path)
-    f = data.get("frame", data)
-    try:
-        x, y, z = (float(f[k]) for k in "xyz")
-        if f.get("q") is not None:
-            return Pose.from_quat(x, y, z, [float(c) for c in f["q"]])
-        return Pose.from_abc(x, y, z, *(float(f[k]) for k in "abc"))
-    except (KeyError, TypeError, ValueError):
-        raise UcsioError("frame needs x, y, z and a, b, c or q", file=path) from None
 
 
 def as_pose(solution: Any) -> Pose:
@@ -105,10 +78,7 @@ def as_pose(solution: Any) -> Pose:
     if isinstance(solution, (str, os.PathLike)):
         return read_solution(solution)
     if isinstance(solution, dict):
-        f = solution.get("frame", solution)
-        if f.get("q") is not None:
-            return Pose.from_quat(f["x"], f["y"], f["z"], f["q"])
-        return Pose.from_abc(f["x"], f["y"], f["z"], f["a"], f["b"], f["c"])
+        return pose_from_json(solution)
     raise TypeError(f"not a pose or solution: {solution!r}")
 
 

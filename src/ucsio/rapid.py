@@ -439,7 +439,6 @@ def _with_text(doc: Document, n: Number) -> Number:
 
 
 def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
-    doc = cf.document
     for d in decls:
         if len(d.name) > IDENT_MAX:
             cf.lint(d.start, "long-name", f"{d.name}: identifier longer than {IDENT_MAX} characters")

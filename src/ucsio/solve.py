@@ -12,23 +12,21 @@
 5. Degenerate point sets raise UcsioError (exit 2).
 
 Also ``uncertainty`` (Monte Carlo through the batched solver, with a
-first-order analytical estimate alongside) and ``load_solution`` (read a
-SOLUTION.json back as a Pose).
+first-order analytical estimate alongside). Reading a SOLUTION.json back is
+``ucsio.solution`` (no numpy), re-exported here.
 """
 from __future__ import annotations
 
-import json
 import math
-import os
 from dataclasses import dataclass
 from typing import Any, Iterable, Sequence
 
 import numpy as np
 
 from . import horn
-from . import rotations as rot
 from .errors import UcsioError
 from .frames import Pose
+from .solution import load_solution, pose_from_json  # noqa: F401  (re-exported)
 
 DEFAULT_THRESHOLD = 1.5
 DEFAULT_MIN_POINTS = 6
@@ -301,57 +299,3 @@ def solution_uncertainty(measurement, sol: Solution, n_samples: int,
 
 # ---------------------------------------------------------------- SOLUTION.json
 
-def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose:
-    """The frame of a SOLUTION.json written by ``ucsio solve -o``, or of a
-    plain JSON object with x, y, z and either a, b, c (KUKA) or q (ABB order).
-    A solution whose dataset was rejected is refused unless
-    ``allow_rejected``; q and a, b, c given together must agree."""
-    path = os.fspath(path)
-    try:
-        with open(path, encoding="utf-8-sig") as fh:
-            data = json.load(fh)
-    except OSError as exc:
-        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
-    except json.JSONDecodeError as exc:
-        raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno,
-                         col=exc.colno) from None
-    if not isinstance(data, dict):
-        raise UcsioError("expected a JSON object with a 'frame' or x, y, z ...", file=path)
-    if data.get("accepted") is False and not allow_rejected:
-        raise UcsioError("this solution's dataset was rejected (too few points within the "
-                         "threshold): measure again", file=path)
-    frame = data.get("frame", data)
-    if not isinstance(frame, dict):
-        raise UcsioError("'frame' is not a JSON object", file=path)
-
-    def num(key):
-        v = frame.get(key)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise UcsioError(f"frame key {key!r} missing or not a finite number", file=path)
-        return float(v)
-
-    x, y, z = num("x"), num("y"), num("z")
-    has_q = frame.get("q") is not None
-    has_abc = all(frame.get(k) is not None for k in "abc")
-    if not has_q and not has_abc:
-        raise UcsioError("frame needs either q [q1, q2, q3, q4] or a, b, c", file=path)
-    pose_q = None
-    if has_q:
-        q = frame["q"]
-        if (not isinstance(q, list) or len(q) != 4
-                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                           and math.isfinite(v) for v in q)):
-            raise UcsioError("frame key 'q' must be a list of 4 numbers", file=path)
-        if abs(math.sqrt(sum(v * v for v in q)) - 1.0) > 1e-3:
-            raise UcsioError("frame key 'q' is not a unit quaternion", file=path)
-        pose_q = Pose.from_quat(x, y, z, q)
-    if has_abc:
-        pose_abc = Pose.from_abc(x, y, z, num("a"), num("b"), num("c"))
-        if pose_q is not None and rot.quat_angle(pose_q.q, pose_abc.q) > 1e-4:
-            raise UcsioError("frame's q and a, b, c disagree "
-                             f"({rot.quat_angle(pose_q.q, pose_abc.q):.4f} deg apart)", file=path)
-        if pose_q is not None:
-            # Both agree: keep the full-precision quaternion with a, b, c as written.
-            return Pose(x, y, z, pose_q.q, pose_abc.abc)
-        return pose_abc
-    return pose_q  # type: ignore[return-value]

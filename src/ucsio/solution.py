@@ -1,0 +1,77 @@
+"""SOLUTION.json: the file ``ucsio solve -o`` writes and ``diff``/``patch`` read.
+
+Kept apart from the solver so that reading a solution imports no numpy:
+``diff`` and ``patch`` start in a blink.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from typing import Any
+
+from . import rotations as rot
+from .errors import UcsioError
+from .frames import Pose
+
+
+def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose:
+    """The frame of a SOLUTION.json written by ``ucsio solve -o``, or of a
+    plain JSON object with x, y, z and either a, b, c (KUKA) or q (ABB order).
+    A solution whose dataset was rejected is refused unless
+    ``allow_rejected``; q and a, b, c given together must agree."""
+    path = os.fspath(path)
+    try:
+        with open(path, encoding="utf-8-sig") as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
+    except json.JSONDecodeError as exc:
+        raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno,
+                         col=exc.colno) from None
+    return pose_from_json(data, path, allow_rejected)
+
+
+def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = False) -> Pose:
+    """The Pose of a solution object (``{"frame": {...}}``) or of a bare
+    ``{x, y, z, a, b, c | q}`` object; errors name ``path``."""
+    if not isinstance(data, dict):
+        raise UcsioError("expected a JSON object with a 'frame' or x, y, z ...", file=path)
+    if data.get("accepted") is False and not allow_rejected:
+        raise UcsioError("this solution's dataset was rejected (too few points within the "
+                         "threshold): measure again", file=path)
+    frame = data.get("frame", data)
+    if not isinstance(frame, dict):
+        raise UcsioError("'frame' is not a JSON object", file=path)
+
+    def num(key):
+        v = frame.get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise UcsioError(f"frame key {key!r} missing or not a finite number", file=path)
+        return float(v)
+
+    x, y, z = num("x"), num("y"), num("z")
+    has_q = frame.get("q") is not None
+    has_abc = all(frame.get(k) is not None for k in "abc")
+    if not has_q and not has_abc:
+        raise UcsioError("frame needs either q [q1, q2, q3, q4] or a, b, c", file=path)
+    pose_q = None
+    if has_q:
+        q = frame["q"]
+        if (not isinstance(q, list) or len(q) != 4
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                           and math.isfinite(v) for v in q)):
+            raise UcsioError("frame key 'q' must be a list of 4 numbers", file=path)
+        if abs(math.sqrt(sum(v * v for v in q)) - 1.0) > 1e-3:
+            raise UcsioError("frame key 'q' is not a unit quaternion", file=path)
+        pose_q = Pose.from_quat(x, y, z, q)
+    if has_abc:
+        pose_abc = Pose.from_abc(x, y, z, num("a"), num("b"), num("c"))
+        if pose_q is not None and rot.quat_angle(pose_q.q, pose_abc.q) > 1e-4:
+            raise UcsioError("frame's q and a, b, c disagree "
+                             f"({rot.quat_angle(pose_q.q, pose_abc.q):.4f} deg apart)", file=path)
+        if pose_q is not None:
+            # Both agree: keep the full-precision quaternion with a, b, c as written.
+            return Pose(x, y, z, pose_q.q, pose_abc.abc)
+        return pose_abc
+    return pose_q  # type: ignore[return-value]
