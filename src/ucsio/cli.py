@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 
 from . import __version__
@@ -38,11 +39,25 @@ def build_parser() -> argparse.ArgumentParser:
             if exc.name != f"ucsio.commands.{name}":
                 raise
             continue  # not built yet
-        p = sub.add_parser(name, help=help_text, description=module.__doc__)
+        p = sub.add_parser(name, help=help_text, description=module.__doc__,
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
+        _accept_negative_lists(p)
         p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
         module.add_arguments(p)
         p.set_defaults(_module=module)
     return parser
+
+
+def _accept_negative_lists(p: argparse.ArgumentParser) -> None:
+    """Let ``--tcp -20.67,89.73,33.44`` and ``--set -5,1,2,0,0,0`` through:
+    argparse takes a value starting with '-' for an option unless it looks
+    like a negative number, and its idea of one has no commas. (A private
+    attribute, so guarded: without it the ``--set=-5,...`` form still works.)"""
+    if hasattr(p, "_negative_number_matcher"):
+        p._negative_number_matcher = _NEGATIVE_LIST
+
+
+_NEGATIVE_LIST = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -10,7 +10,7 @@ an ABB wobj with robhold TRUE, an oframe under a non-identity uframe) or a
 RAPID PERS that another module in the same folder also declares (RAPID shares
 it; --force overrides these two), a rejected solution, and a file that changed
 on disk since it was read. --set and --set-q take the values as given, in the
-frame's own reference; write negative first values as --set=-5,1,2,0,0,0."""
+frame's own reference (negative values need no "=": --set -5,1,2,0,0,0)."""
 from __future__ import annotations
 
 import sys

@@ -5,18 +5,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import tempfile
 
 from ..errors import UcsioError
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    # Let ``--tcp -20.67,89.73,33.44`` through: argparse would take a value
-    # starting with '-' for an option unless it looks like a negative number,
-    # and its idea of one has no commas. (Private attribute; guarded.)
-    if hasattr(p, "_negative_number_matcher"):
-        p._negative_number_matcher = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
     p.add_argument("measurement", metavar="MEAS.csv", help="measurement file (see SPEC: Measurement files)")
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z", default=None,
