@@ -1,10 +1,13 @@
 """ucsio: measured user frames for ABB RAPID and KUKA KRL controller files.
 
-Python API (everything the command line does is callable from here)::
+The Python API mirrors the commands in ``ucsio.api`` (load, frames, solve,
+diff_frame, diff_files, patch, save); the basics are here too::
 
     import ucsio
     cell = ucsio.load("R01/$config.dat")      # parse a controller file
     for f in cell.frames: print(f.name, f.pose)
+
+Importing ucsio is cheap: numpy, scipy and lark load only where they are used.
 """
 from __future__ import annotations
 
