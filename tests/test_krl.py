@@ -528,3 +528,70 @@ def test_machine_tables_read_alike_on_both_paths(index):
                           f'MACHINE_FRAME_DAT[1]={{MACH_DEF_INDEX {index},PARENT[] "P"}}\n')))
     machine = int(float(index)) != 0
     assert cf.frame("BASE_DATA[1]").reference == ("machine" if machine else "world")
+
+
+def selected(text):
+    return [text[s:e] for s, e in krl.outline(text)]
+
+
+def test_fast_path_reads_only_the_machine_entries_in_use():
+    machine = ('MACHINE_DEF[1]={NAME[] "KR 16",ROOT {X 0,Y 0,Z 0,A 0,B 0,C 0}}\n'
+               'MACHINE_DEF[02]={NAME[] "DKP",ROOT {X 2000,Y 0,Z 0,A 0,B 0,C 0}}\n'
+               'MACHINE_DEF[3]={NAME[] "other"}\n'
+               "MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 0,PARENT[] \"WORLD\"}\n"
+               "MACHINE_FRAME_DAT[2]={MACH_DEF_INDEX[] 2,PARENT[] \"DKP\"}\n"
+               "MACHINE_TOOL_DAT[1]={MACH_DEF_INDEX 3}\n")
+    text = wrap("BASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\nBASE_DATA[2]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n"
+                + machine)
+    lines = selected(text)
+    assert [line[:20] for line in lines if line.startswith("MACHINE")] == \
+        ["MACHINE_DEF[02]={NAM", "MACHINE_FRAME_DAT[2]"]
+    cf = both(doc_of(text))
+    b2 = cf.frame("BASE_DATA[2]")
+    assert b2.reference == "machine" and b2.info["machine"]["index"] == 2
+    assert b2.info["machine"]["definition"]["root"]["x"] == 2000.0
+    assert cf.frame("BASE_DATA[1]").reference == "world"
+    # no entry in use: no machine line at all
+    assert not [line for line in selected(text.replace("INDEX[] 2", "INDEX 0"))
+                if line.startswith("MACHINE")]
+
+
+def test_a_machine_entry_with_index_0_is_ignored_on_both_paths():
+    # a later MACHINE_FRAME_DAT[1] with index 0 does not undo the earlier one:
+    # the interpretation ignores entries not tied to a kinematic
+    cf = both(doc_of(wrap("BASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n"
+                          'MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 2,PARENT[] "P"}\n'
+                          'MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 0,PARENT[] "WORLD"}\n')))
+    assert cf.frame("BASE_DATA[1]").reference == "machine"
+    # an error in an unused entry is found by `check` (full) only
+    doc = doc_of(wrap("BASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n"
+                      "MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 0,PARENT[] \"W}\n"
+                      "MACHINE_FRAME_DAT[2]={MACH_DEF_INDEX 1}\n"))
+    assert krl.parse(doc).frame("BASE_DATA[1]").reference == "world"
+    with pytest.raises(UcsioError, match="unterminated string"):
+        krl.parse(doc, full=True)
+
+
+def test_repeated_values_are_read_once_with_their_own_positions():
+    zero = "={X 0.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0}"
+    text = wrap("DECL FRAME P[4]\n" + "".join(f"P[{i}]{zero}\n" for i in (1, 2, 3))
+                + f"DECL FRAME Q{zero}\n"
+                + "P[4]={X 1,Y 2,Z 3,S 4,A 5,B 6,C 7}\n"
+                + "BASE_DATA[1]  ={X 1,Y 2,Z 3,S 4,A 5,B 6,C 7}\n"
+                + 'TOOL_NAME[1,]="same"\nTOOL_NAME[2,]="same"\n')
+    placeholders, shared = krl._shared_values(text, krl.outline(text))
+    assert len(shared) == 4           # P[2], P[3], BASE_DATA[1], TOOL_NAME[2]; not the DECL line
+    doc = doc_of(text)
+    assert krl._shared_parse(doc, doc.text, krl.outline(doc.text)) is not None
+    cf = both(doc)
+    for fr in cf.frames:
+        for num in fr.numbers.values():
+            assert doc.text[num.span.start:num.span.end] == num.text
+            assert doc.line_of(num.span.start) == fr.line
+    assert [(lint.code, lint.line, lint.col) for lint in cf.lints] == \
+        [("unknown-component", 9, 19), ("unknown-component", 10, 29)]
+    # an error in a repeated value: reported where the text has it first
+    bad = wrap("BASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n" * 2 + "BASE_DATA[2]={X 1.2.3}\n" * 2)
+    with pytest.raises(UcsioError) as e:
+        krl.parse(doc_of(bad))
+    assert (e.value.line, e.value.col) == (6, 17) and "malformed number" in e.value.message

@@ -10,11 +10,16 @@ grammar:
 - the fast path (``ucsio frames``, ``diff``, ``patch``): a line-oriented
   outline (a few regular expressions, one pass each) picks the lines that
   matter for frames: FRAME declarations, element lines of FRAME arrays,
-  the TOOL/BASE name and type tables, LOAD_DATA, the MAX_* sizes, and
-  MACHINE_FRAME_DAT/MACHINE_DEF when a base is tied to an external
-  kinematic. Every other character is replaced by a space (newlines kept), so
-  offsets and line numbers are those of the real file, and Lark parses that
-  masked text in one call (start symbol ``lines``). A 120 KB $config.dat costs a few hundred short lines of Lark, not 3,000.
+  the TOOL/BASE name and type tables, LOAD_DATA, the MAX_* sizes, and the
+  MACHINE_FRAME_DAT entries that tie a base to an external kinematic (with
+  the MACHINE_DEF entries they name). Every other character is replaced by a
+  space (newlines kept), so offsets and line numbers are those of the real
+  file, and Lark parses that masked text in one call (start symbol
+  ``lines``). A value repeated on several element lines (zero frames, unset
+  loads) is given to Lark once: the later copies become a placeholder and
+  share the first one's tree, moved to their own offsets. A 120 KB
+  $config.dat costs about 200 short lines and 1,800 tokens of Lark, not
+  3,000 lines.
 
 Both paths feed the same interpretation, which only looks at those
 statements, so they give identical frames and lints (tests/test_krl.py checks
@@ -35,6 +40,7 @@ from typing import Any
 
 from .controller import ControllerFile
 from .document import Document, Span
+from .errors import UcsioError
 from .frames import Frame, Number, Pose
 
 VENDOR = "kuka"
@@ -59,29 +65,51 @@ REAL_MAX = 3.4028235e38             # KRL REAL is float32
 COMPONENTS = ("x", "y", "z", "a", "b", "c")
 
 # $config.dat tables read besides the FRAME arrays themselves. MACHINE_FRAME_DAT
-# and MACHINE_DEF (external kinematics) only matter for a base tied to one, so
-# the fast path reads them only when some MACH_DEF_INDEX is not 0.
+# and MACHINE_DEF (external kinematics) only matter for a base tied to one: the
+# interpretation ignores a MACHINE_FRAME_DAT[n] whose MACH_DEF_INDEX is 0 (or
+# missing) and reads MACHINE_DEF[k] only through such an index, so the fast
+# path reads just the MACHINE_FRAME_DAT lines whose index may not be 0 and the
+# MACHINE_DEF lines they may point at.
 TABLES = ("TOOL_DATA", "BASE_DATA", "TOOL_NAME", "BASE_NAME", "TOOL_TYPE", "BASE_TYPE",
           "LOAD_DATA")
 MACHINE_TABLES = ("MACHINE_FRAME_DAT", "MACHINE_DEF")
-_MACHINE_USED = re.compile(r"MACH_DEF_INDEX[ \t\f\r]+[+-]?0*[1-9]", re.I)
 
 # -- the outline (fast path) --------------------------------------------------
-# Whitespace is the grammar's WS, [ \t\f\r]; a line is what ends at "\n".
-_MODS = r"^[ \t\f\r]*(?:(?:DECL|GLOBAL|CONST)[ \t\f\r]+)*"
-_FRAME_DECL = re.compile(_MODS + r"FRAME[ \t\f\r][^\n]*", re.I | re.M)
-_MAX_DECL = re.compile(_MODS + r"INT[ \t\f\r]+MAX_[^\n]*", re.I | re.M)
+# Whitespace is the grammar's WS, [ \t\f\r]; a line is what ends at "\n". The
+# line patterns start with the "\n" before the line (searched in "\n" + text):
+# a literal first character lets the regex engine skip to the next newline
+# instead of trying every position, as ^ with re.M would (4x faster).
+_WS = r"[ \t\f\r]"
+_MODS = _WS + r"*(?:(?:DECL|GLOBAL|CONST)" + _WS + r"+)*"
+# FRAME declarations (group 2 set) and INT MAX_* sizes
+_DECL_LINE = re.compile(r"\n(" + _MODS + r"(?:(FRAME)" + _WS + r"|INT" + _WS + r"+MAX_)[^\n]*)",
+                        re.I)
 _DEFDAT = re.compile(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]+(PUBLIC)\b)?", re.I | re.M)
-_ENDDAT = re.compile(r"^[ \t\f\r]*ENDDAT\b", re.I | re.M)
-_STATEMENT_BEFORE = re.compile(r"^[ \t\f\r]*[^\s;&]", re.M)
+_ENDDAT = re.compile(r"\n[ \t\f\r]*ENDDAT\b", re.I)
 _IDENT = re.compile(r"[A-Za-z_$][\w$]*")
 _BRACED = re.compile(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
-_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+# the left-hand side of an element line: NAME, NAME[...]
+_ASSIGN_LHS = re.compile(r"[ \t\f\r]*[A-Za-z_$][\w$]*[ \t\f\r]*(?:\[[^\]]*\][ \t\f\r]*)?\Z")
+# error reporting only: compiled when needed
+_STATEMENT_BEFORE = r"^[ \t\f\r]*[^\s;&]"
+_NUMBER = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z"
+# the field and the NUMBER token the grammar reads as its value
+_MACH_DEF_INDEX = re.compile(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r]*)?"
+                             r"([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)",
+                             re.I)
 
 
-def _element_re(names) -> re.Pattern:
+def _element_re(names, machine: bool) -> re.Pattern:
+    """Element lines ``NAME[...]=...``/``NAME=...`` of the tables ``names``;
+    with ``machine``, also of MACHINE_FRAME_DAT (group 2 set) and MACHINE_DEF
+    (group 3 set; group 4 "[" and group 5 the first index, if so written)."""
     alt = "|".join(sorted((re.escape(n) for n in names), key=len, reverse=True))
-    return re.compile(r"^[ \t\f\r]*(?:" + alt + r")[ \t\f\r]*[\[=][^\n]*", re.I | re.M)
+    if machine:
+        alt = "(MACHINE_FRAME_DAT)|(MACHINE_DEF)|" + alt
+    else:
+        alt = "()()" + alt          # the same group numbers, never set
+    return re.compile(r"\n(" + _WS + r"*(?:" + alt + r")" + _WS + r"*([\[=])(?:" + _WS +
+                      r"*([0-9]+))?[^\n]*)", re.I)
 
 
 def outline(text: str) -> list[tuple[int, int]]:
@@ -89,21 +117,125 @@ def outline(text: str) -> list[tuple[int, int]]:
     span is a line's content without its newline."""
     spans = []
     names = set(TABLES)
-    for m in _FRAME_DECL.finditer(text):
-        spans.append((m.start(), m.end()))
-        # every identifier on the line outside {...}, "..." and the comment:
-        # a superset of the declared names, which is all the filter needs.
-        rest = m.group()
-        rest = _BRACED.sub(" ", rest).split(";", 1)[0]
-        names.update(n.upper() for n in _IDENT.findall(rest))
-    for m in _MAX_DECL.finditer(text):
-        spans.append((m.start(), m.end()))
-    if _MACHINE_USED.search(text):
+    nl_text = "\n" + text           # offsets in nl_text are one more than in text
+    for m in _DECL_LINE.finditer(nl_text):
+        spans.append((m.start(1) - 1, m.end(1) - 1))
+        if m.group(2) is not None:
+            # every identifier on a FRAME line outside {...}, "..." and the
+            # comment: a superset of the declared names, all the filter needs.
+            rest = _BRACED.sub(" ", m.group(1)).split(";", 1)[0]
+            names.update(n.upper() for n in _IDENT.findall(rest))
+    # MACHINE_FRAME_DAT and MACHINE_DEF, unless declared as FRAMEs (then every
+    # element line is a frame)
+    machine = names.isdisjoint(MACHINE_TABLES)
+    if not machine:
         names.update(MACHINE_TABLES)
-    for m in _element_re(names).finditer(text):
-        spans.append((m.start(), m.end()))
+    mframes = []
+    mdefs = []
+    for m in _element_re(names, machine).finditer(nl_text):
+        span = (m.start(1) - 1, m.end(1) - 1)
+        if m.group(2) is not None:
+            mframes.append((span, m.group(1)))
+        elif m.group(3) is not None:
+            mdefs.append((span, m.group(4) == "[" and m.group(5)))
+        else:
+            spans.append(span)
+    if mframes:
+        spans += _machine_lines(mframes, mdefs)
     spans.sort()
     return spans
+
+
+def _machine_lines(mframes, mdefs) -> list[tuple[int, int]]:
+    """The MACHINE_FRAME_DAT lines that may tie a base to an external kinematic
+    (a MACH_DEF_INDEX that is not 0) and the MACHINE_DEF lines they may refer
+    to: a superset of what the interpretation reads from those tables.
+    ``mframes``: (span, line); ``mdefs``: (span, first index as written or
+    a false value)."""
+    spans = []
+    refs: set[int] = set()
+    every = False                   # an index too large to tell: keep all of MACHINE_DEF
+    for span, line in mframes:
+        keep = False
+        for n in _MACH_DEF_INDEX.findall(line):
+            v = float(n)
+            if abs(v) >= 1:         # int(v) != 0, as the interpretation reads it
+                keep = True
+                try:
+                    refs.add(int(v))
+                except OverflowError:
+                    every = True
+        if keep:
+            spans.append(span)
+    if spans:
+        # MACHINE_DEF[k]...: k is the entry; any other shape, keep the line
+        spans += [span for span, k in mdefs if every or not k or int(k) in refs]
+    return spans
+
+
+def _shared_values(text: str, spans: list[tuple[int, int]]):
+    """Lines ``NAME...=VALUE`` whose VALUE text (all after the first "=") an
+    earlier line has too: a config file repeats a few values (zero frames,
+    unset loads) many times, and Lark need read each only once.
+
+    Returns (placeholders, shared): ``placeholders`` (start, end) of the later
+    values, each to be written as a 0 padded with spaces; ``shared`` maps the
+    statement start of such a line to (statement start of the first line with
+    that value, offset from there to here, start of the placeholder)."""
+    first: dict[str, tuple[int, int]] = {}     # value text -> (statement start, value start)
+    placeholders = []
+    shared: dict[int, tuple[int, int, int]] = {}
+    end = 0
+    for s, e in spans:
+        if s < end:                  # a line matched twice
+            continue
+        end = e
+        line = text[s:e]
+        i = line.find("=")
+        if i <= 0 or i == len(line) - 1 or not _ASSIGN_LHS.match(line, 0, i):
+            continue
+        start = s + len(line) - len(line.lstrip(" \t\f\r"))
+        pos = s + i + 1
+        src, src_pos = first.setdefault(line[i + 1:], (start, pos))
+        if src != start:
+            placeholders.append((pos, e))
+            shared[start] = (src, pos - src_pos, pos)
+    return placeholders, shared
+
+
+def _shared_parse(doc: Document, text: str, spans):
+    """The statements of the masked text, Lark reading each repeated value
+    once (_shared_values); None when that is not possible here (a syntax
+    error, or a shared value not read as an assignment): the caller then
+    parses the masked text as it is, with its exact error."""
+    from lark import Token
+    from lark.exceptions import LarkError
+
+    placeholders, shared = _shared_values(text, spans)
+    if not shared:
+        return None
+    mtext = masked(text, spans)
+    pieces = []
+    pos = 0
+    for s, e in placeholders:
+        pieces.append(mtext[pos:s])
+        pieces.append("0".ljust(e - s))
+        pos = e
+    pieces.append(mtext[pos:])
+    try:
+        stmts = _statements(_parser().parse("".join(pieces), start="lines"), doc)
+    except (LarkError, UcsioError):
+        return None
+    assigns = {st.start: st for st in stmts if st.kind == "assign"}
+    for start, (src, delta, pos) in shared.items():
+        st = assigns.get(start)
+        first = assigns.get(src)
+        if st is None or first is None or not isinstance(st.value, Token) \
+                or st.value.start_pos != pos or st.value.value != "0":
+            return None
+        st.value = first.value
+        st.delta = delta
+    return stmts
 
 
 def masked(text: str, spans: list[tuple[int, int]]) -> str:
@@ -126,7 +258,7 @@ def masked(text: str, spans: list[tuple[int, int]]) -> str:
 # -- parsing -------------------------------------------------------------------
 def _parser():
     from .grammar import parser
-    return parser("krl", START)
+    return parser("krl", START, positions=False)
 
 
 def _raise_syntax(doc: Document, text: str, exc: Exception):
@@ -197,7 +329,7 @@ def _bad_number(text: str, pos: int):
     word = text[s:e]
     if not word or not (word[0].isdigit() or word[0] in ".+-"):
         return None
-    if not any(c.isdigit() for c in word) or _NUMBER.match(word):
+    if not any(c.isdigit() for c in word) or re.match(_NUMBER, word):
         return None
     return s, e
 
@@ -210,7 +342,7 @@ def _parse(doc: Document, text: str, start: str):
     except LarkError as exc:
         if start == "file":
             m = _DEFDAT.search(text)
-            if m is not None and _STATEMENT_BEFORE.search(text, 0, m.start()):
+            if m is not None and re.compile(_STATEMENT_BEFORE, re.M).search(text, 0, m.start()):
                 raise doc.error("DEFDAT must come first, after the & header lines",
                                 m.start() + len(m.group()) - len(m.group().lstrip())) from None
         raise _raise_syntax(doc, text, exc) from None
@@ -229,41 +361,60 @@ class _Val:
         self.dups = ()
 
 
-def _value(node) -> _Val:
-    from lark import Token
+class _Name:
+    """A field name moved by a shared value's offset (see _shared_values):
+    what the interpretation reads of a NAME token."""
 
-    if isinstance(node, Token):
+    __slots__ = ("value", "start_pos")
+
+    def __init__(self, value, start_pos):
+        self.value, self.start_pos = value, start_pos
+
+
+def _value(node, delta: int = 0) -> _Val:
+    """The value ``node`` as a _Val; positions moved by ``delta`` (a value
+    parsed once for several lines with the same text, see _shared_values)."""
+    if isinstance(node, str):           # a lark Token (a str); else a struct Tree
         t = node.type
         v = node.value
+        start = node.start_pos + delta
+        end = node.end_pos + delta
         if t == "NUMBER":
-            return _Val("number", float(v), node.start_pos, node.end_pos, v)
+            return _Val("number", float(v), start, end, v)
         if t == "STRING":
-            return _Val("string", v[1:-1], node.start_pos, node.end_pos)
+            return _Val("string", v[1:-1], start, end)
         if t == "ENUMVAL":
-            return _Val("enum", "#" + v[1:].strip().upper(), node.start_pos, node.end_pos)
+            return _Val("enum", "#" + v[1:].strip().upper(), start, end)
         if t == "TRUE" or t == "FALSE":
-            return _Val("bool", t == "TRUE", node.start_pos, node.end_pos)
+            return _Val("bool", t == "TRUE", start, end)
         if t == "CHARLIT":
-            return _Val("char", v[1:-1], node.start_pos, node.end_pos)
-        return _Val("name", v, node.start_pos, node.end_pos)
-    # struct: {KEY: (field name token, _Val)} in source order; duplicates kept
+            return _Val("char", v[1:-1], start, end)
+        return _Val("name", v, start, end)
+    # struct: {KEY: (field name token, _Val)} in source order; duplicates kept.
+    # Children: LBRACE, the fields, RBRACE (rule nodes carry no positions).
     fields: dict[str, Any] = {}
     dups = []
-    for f in node.children:
-        ch = f.children
-        if not isinstance(ch[0], Token):   # Type: prefix
+    children = node.children
+    for i in range(1, len(children) - 1):
+        ch = children[i].children
+        if not isinstance(ch[0], str):     # Type: prefix
             ch = ch[1:]
-        key = ch[0].value.upper()
+        name = ch[0]
+        if delta:
+            name = _Name(name.value, name.start_pos + delta)
+        key = name.value.upper()
         if key in fields:
-            dups.append((key, ch[0].start_pos))
-        fields[key] = (ch[0], _value(ch[-1]))
-    val = _Val("struct", fields, node.meta.start_pos, node.meta.end_pos)
+            dups.append((key, name.start_pos))
+        fields[key] = (name, _value(ch[-1], delta))
+    val = _Val("struct", fields, children[0].start_pos + delta, children[-1].end_pos + delta)
     val.dups = dups
     return val
 
 
 class _Stmt:
-    __slots__ = ("kind", "line", "start", "mods", "type", "vars", "name", "index", "value")
+    # delta: offset from where ``value`` was parsed to this line (_shared_values)
+    __slots__ = ("kind", "line", "start", "mods", "type", "vars", "name", "index", "value",
+                 "delta")
 
 
 _RESERVED = {"DEFDAT", "ENDDAT", "DEF", "END", "DEFFCT", "ENDFCT"}
@@ -292,8 +443,9 @@ def _statements(tree, doc: Document):
                 i += 1
             s = _Stmt()
             s.kind = "decl"
-            s.line = st.meta.line
-            s.start = st.meta.start_pos
+            s.delta = 0
+            s.line = ch[0].line
+            s.start = ch[0].start_pos
             s.mods = mods
             s.type = ch[i].value.upper()
             if s.type in _RESERVED:     # the contextual lexer took it for a type name
@@ -317,8 +469,9 @@ def _statements(tree, doc: Document):
             ch = st.children
             s = _Stmt()
             s.kind = "assign"
-            s.line = st.meta.line
-            s.start = st.meta.start_pos
+            s.delta = 0
+            s.line = ch[0].line
+            s.start = ch[0].start_pos
             s.name = ch[0]
             s.index = None
             if len(ch) == 3:
@@ -354,11 +507,13 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     else:
         # the structure the fast path does not parse, checked cheaply
         m = _DEFDAT.search(text)
-        if m is not None and _ENDDAT.search(text, m.end()) is None:
+        if m is not None and _ENDDAT.search("\n" + text, m.end() + 1) is None:
             raise doc.error("missing ENDDAT: the DEFDAT data list is never closed", len(text))
-        tree = _parse(doc, masked(text, outline(text)), "lines")
-        stmts = _statements(tree, doc)
-        defdat = _defdat(tree, text, False)
+        spans = outline(text)
+        stmts = _shared_parse(doc, text, spans)
+        if stmts is None:
+            stmts = _statements(_parse(doc, masked(text, spans), "lines"), doc)
+        defdat = _defdat(None, text, False)
     cf = ControllerFile(document=doc, vendor=VENDOR)
     _Interpreter(doc, cf).run(stmts)
     cf.extra["defdat"] = defdat
@@ -418,33 +573,36 @@ class _Interpreter:
                     or (key in frame_scalars and not idx):
                 elements.append((s, key))
             elif key in ("TOOL_NAME", "BASE_NAME") and one is not None:
-                v = _value(s.value)
+                v = _value(s.value, s.delta)
                 if v.kind != "string":
                     self.lint(v.start, "bad-label", f"{s.name.value}[{one},] is not a string")
                     continue
                 labels[(key[:4], one)] = (v.value, v.start)
             elif key in ("TOOL_TYPE", "BASE_TYPE") and one is not None:
-                v = _value(s.value)
+                v = _value(s.value, s.delta)
                 if v.kind != "enum":
                     self.lint(v.start, "bad-type", f"{s.name.value}[{one}] is not an #ENUM value")
                     continue
                 types[(key[:4], one)] = (v.value, v.start)
             elif key == "LOAD_DATA" and one is not None:
-                v = _value(s.value)
+                v = _value(s.value, s.delta)
                 if v.kind == "struct":
                     loads[one] = _load(v)
             elif key == "MACHINE_FRAME_DAT" and one is not None:
-                v = _value(s.value)
+                v = _value(s.value, s.delta)
                 if v.kind == "struct":
                     f = v.value
                     idxv = f.get("MACH_DEF_INDEX")
+                    index = int(idxv[1].value) if idxv and idxv[1].kind == "number" else 0
+                    if not index:     # not tied to a kinematic: the fast path skips the line
+                        continue
                     par = f.get("PARENT")
                     mframes[one] = {
-                        "index": int(idxv[1].value) if idxv and idxv[1].kind == "number" else 0,
+                        "index": index,
                         "parent": par[1].value.rstrip() if par and par[1].kind == "string"
                         else None}
             elif key == "MACHINE_DEF" and one is not None:
-                v = _value(s.value)
+                v = _value(s.value, s.delta)
                 if v.kind == "struct":
                     f = v.value
                     mach = {k.lower(): (f[k][1].value.rstrip() if f[k][1].kind == "string"
@@ -507,7 +665,7 @@ class _Interpreter:
         doc = self.doc
         fr = Frame(name=name, vendor=VENDOR, type=ftype, pose=None, file=doc.path,
                    line=s.line, document=doc)
-        v = _value(val_node)
+        v = _value(val_node, s.delta)
         if v.kind != "struct":
             self.lint(v.start, "not-a-frame", f"{name}: a FRAME value is written {{X ..,Y ..,"
                                               f"Z ..,A ..,B ..,C ..}}")
