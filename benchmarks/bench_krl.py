@@ -17,22 +17,17 @@ Exit status 1 if the ratio is over the target.
 from __future__ import annotations
 
 import argparse
-import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 TARGET = 1.5
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from coldstart import alternate  # noqa: E402
+
 DEFAULT = (HERE.parents[1] / "shared" / "corpus" / "kuka"
            / "Aleynikovich__Zinkerreka__KRC__R1__System__$config.dat")
-
-
-def _time(cmd: list[str]) -> float:
-    t0 = time.perf_counter()
-    subprocess.run(cmd, stdout=subprocess.DEVNULL, check=True)
-    return time.perf_counter() - t0
 
 
 def main(argv=None) -> int:
@@ -47,17 +42,9 @@ def main(argv=None) -> int:
     py = sys.executable
     numpy_cmd = [py, "-c", "import numpy"]
     ucsio_cmd = [py, "-m", "ucsio", "frames", str(path)]
-    # warm-up: the OS file cache and Lark's grammar cache (written once per machine)
-    _time(numpy_cmd)
-    _time(ucsio_cmd)
-    a, b = [], []
-    for _ in range(args.runs):
-        a.append(_time(numpy_cmd))
-        b.append(_time(ucsio_cmd))
-    ma, mb = statistics.median(a), statistics.median(b)
+    ma, mb = alternate(numpy_cmd, ucsio_cmd, args.runs)
 
     # in-process, for information: the parse alone (parser already loaded)
-    sys.path.insert(0, str(HERE.parent / "src"))
     from ucsio import krl
     from ucsio.document import Document
     doc = Document.read(path)
@@ -77,7 +64,7 @@ def main(argv=None) -> int:
     print(f"  python -m ucsio frames FILE        {mb * 1000:7.1f} ms")
     print(f"  ratio                              {ratio:7.2f}   (target <= {TARGET})")
     print(f"in-process krl.parse: fast path {fast * 1000:.1f} ms, full=True {full * 1000:.1f} ms")
-    print(f"rerun: python {Path(__file__).relative_to(Path.cwd()) if Path(__file__).is_relative_to(Path.cwd()) else __file__} --runs {args.runs}")
+    print(f"rerun: python benchmarks/bench_krl.py --runs {args.runs}")
     return 0 if ratio <= TARGET else 1
 
 

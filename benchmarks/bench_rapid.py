@@ -10,14 +10,14 @@
    interpreter start excluded) is printed too.
 
 Rounds alternate between the two commands of a pair so that machine noise
-hits both alike; medians are compared. Needs ucsio installed (pip install .).
+hits both alike; medians are compared (see coldstart.py). Needs ucsio
+installed (pip install .).
 """
 from __future__ import annotations
 
 import argparse
 import re
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -25,6 +25,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+from coldstart import alternate  # noqa: E402
 from make_big_module import big_module  # noqa: E402
 
 CORPUS = HERE.parents[1] / "shared" / "corpus" / "abb"
@@ -36,21 +37,6 @@ REGEX_CMD = ("import re,sys\n"
              f"n=sum(1 for m in re.finditer({SCAN!r}, d))\n")
 
 
-def cold(cmd: list[str]) -> float:
-    t = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    return time.perf_counter() - t
-
-
-def pair(a: list[str], b: list[str], rounds: int) -> tuple[float, float]:
-    cold(a), cold(b)  # warm the OS file cache and Lark's grammar cache
-    ta, tb = [], []
-    for _ in range(rounds):
-        ta.append(cold(a))
-        tb.append(cold(b))
-    return statistics.median(ta), statistics.median(tb)
-
-
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=9)
@@ -59,7 +45,7 @@ def main() -> int:
     ok = True
 
     typical = TYPICAL if TYPICAL.exists() else FALLBACK
-    t_ucsio, t_numpy = pair([py, "-m", "ucsio", "frames", str(typical)],
+    t_ucsio, t_numpy = alternate([py, "-m", "ucsio", "frames", str(typical)],
                             [py, "-c", "import numpy"], args.rounds)
     ratio = t_ucsio / t_numpy
     ok &= ratio <= 1.5
@@ -72,7 +58,7 @@ def main() -> int:
         big = Path(tmp) / "big.mod"
         big.write_text(big_module(20000), newline="")
         size = big.stat().st_size / 1e6
-        t_ucsio, t_regex = pair([py, "-m", "ucsio", "frames", str(big)],
+        t_ucsio, t_regex = alternate([py, "-m", "ucsio", "frames", str(big)],
                                 [py, "-c", REGEX_CMD, str(big)], args.rounds)
         ratio = t_ucsio / t_regex
         ok &= ratio <= 3.0
