@@ -37,6 +37,7 @@ import numpy as np
 
 from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
+from .files import atomic_write_text
 from .frames import Pose
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
@@ -526,8 +527,6 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
     """Solve and diff every entry; one entry's failure never stops the run."""
     import time
 
-    from .measurement import read_measurement  # noqa: F401  (import cost counted in "read")
-
     t0 = time.perf_counter()
     cache = _Cache()
     results = [EntryResult(entry=e) for e in manifest.entries]
@@ -783,23 +782,6 @@ def write_csv(results: Sequence[EntryResult], path: str) -> None:
         w.writerow(["" if v is None else ("true" if v is True else "false" if v is False
                                           else repr(v) if isinstance(v, float) else v)
                     for v in row])
-    _write_text_atomic(path, buf.getvalue())
+    atomic_write_text(path, buf.getvalue())
 
 
-def _write_text_atomic(path: str, text: str) -> None:
-    import tempfile
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".ucsio-", suffix=".tmp", dir=folder)
-    try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)       # a new file's usual mode, not mkstemp's 0600
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise

@@ -422,7 +422,7 @@ _RESERVED = {"DEFDAT", "ENDDAT", "DEF", "END", "DEFFCT", "ENDFCT"}
 
 def _statements(tree, doc: Document):
     """decl and assign statements of the tree, simplified, in order."""
-    from lark import Token, Tree
+    from lark import Tree
 
     if tree.data == "file":
         body = tree.children[-1]

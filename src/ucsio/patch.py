@@ -35,7 +35,6 @@ import itertools
 import math
 import os
 import struct
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -44,6 +43,7 @@ from . import rotations as rot
 from .controller import ABB_SUFFIXES, ControllerFile, parse
 from .document import Document, Edit
 from .errors import UcsioError
+from .files import atomic_write
 from .frames import Frame, Number, Pose
 
 # Written precision (decimals) and half a step: what "unchanged" means.
@@ -479,53 +479,6 @@ def _same_on_disk(path: str, doc: Document) -> bool:
         return Path(path).read_bytes() == doc.raw
     except OSError:
         return False
-
-
-def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
-                 check=None, owner: tuple[int, int] | None = None) -> None:
-    """Write ``data`` to ``path`` through a temporary file in the same folder,
-    fsync, then ``os.replace``. ``check()`` runs just before the rename and may
-    raise to abort. The temporary file never outlives a failure."""
-    path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise UcsioError("cannot write: the folder does not exist", file=path)
-    try:
-        fd, tmp = tempfile.mkstemp(dir=folder, prefix="." + os.path.basename(path) + ".",
-                                   suffix=".ucsio-tmp")
-    except OSError as exc:
-        raise UcsioError(f"cannot write in this folder: {exc.strerror or exc}", file=path) from None
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        if mode is not None:
-            os.chmod(tmp, mode)
-        if owner is not None and hasattr(os, "chown"):
-            try:
-                os.chown(tmp, *owner)
-            except OSError:
-                pass           # not allowed to give it away: keep ours
-        if check is not None:
-            check()
-        os.replace(tmp, path)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(exc, OSError):
-            raise UcsioError(f"cannot write: {exc.strerror or exc}", file=path) from None
-        raise
-    try:  # make the rename durable
-        dfd = os.open(folder, os.O_RDONLY)
-        try:
-            os.fsync(dfd)
-        finally:
-            os.close(dfd)
-    except OSError:
-        pass
 
 
 def save(result: PatchResult, path: str | os.PathLike | None = None,

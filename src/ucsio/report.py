@@ -429,8 +429,8 @@ def _detail(i: int, e: dict) -> str:
 
 def write_report(result, path: str) -> None:
     """Write the report of a ``BatchResult`` (atomically)."""
-    from .batch import _write_text_atomic
+    from .files import atomic_write_text
     from .output import _clean
 
     data = _clean(result.as_dict())
-    _write_text_atomic(path, render_report(data))
+    atomic_write_text(path, render_report(data))

@@ -26,7 +26,7 @@ import numpy as np
 from . import horn
 from .errors import UcsioError
 from .frames import Pose
-from .solution import load_solution, pose_from_json  # noqa: F401  (re-exported)
+from .solution import load_solution, pose_from_json
 
 DEFAULT_THRESHOLD = 1.5
 DEFAULT_MIN_POINTS = 6
@@ -299,3 +299,6 @@ def solution_uncertainty(measurement, sol: Solution, n_samples: int,
 
 # ---------------------------------------------------------------- SOLUTION.json
 
+
+__all__ = ["Solution", "PointResult", "solve", "solve_points", "leave_one_out", "uncertainty",
+           "analytical_std", "solution_uncertainty", "load_solution", "pose_from_json"]

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import argparse
 import os
-import tempfile
 
 from ..errors import UcsioError
+from ..files import atomic_write_text
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -65,21 +65,6 @@ def tool_tcp(spec: str) -> tuple[float, float, float]:
     return frame.pose.t
 
 
-def write_atomic(path: str, text: str) -> None:
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".ucsio-", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
-
-
 def run(args) -> int:
     import io
     import json
@@ -111,7 +96,7 @@ def run(args) -> int:
         json.dump(_clean(result), buf, indent=2, ensure_ascii=False)
         buf.write("\n")
         try:
-            write_atomic(args.output, buf.getvalue())
+            atomic_write_text(args.output, buf.getvalue())
         except OSError as exc:
             raise UcsioError(f"cannot write {args.output}: {exc.strerror or exc}") from None
 
