@@ -26,9 +26,10 @@ def emit_json(obj: Any, stream=None) -> None:
     stream.write("\n")
 
 
-def fmt(v: Any, digits: int = 3) -> str:
-    if v is None:
-        return "-"
+def fmt(v: Any, digits: int = 3, none: str = "-") -> str:
+    """A value for a table: fixed decimals, yes/no, ``none`` for null or NaN."""
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return none
     if isinstance(v, bool):
         return "yes" if v else "no"
     if isinstance(v, float):

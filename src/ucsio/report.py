@@ -26,6 +26,7 @@ import os
 from typing import Any, Sequence
 
 from .diff import GROUP_BOUNDS
+from .output import fmt
 
 GROUP_COLORS = ("#2e7d32", "#7cb342", "#f9a825", "#ef6c00", "#c62828")
 STATUS_CLASS = {"pass": "ok", "over tolerance": "warn", "rejected": "bad", "error": "err"}
@@ -71,13 +72,7 @@ def _e(s: Any) -> str:
 
 
 def _f(v: Any, digits: int = 3) -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "–"
-    if isinstance(v, bool):
-        return "yes" if v else "no"
-    if isinstance(v, float):
-        return f"{v:.{digits}f}"
-    return str(v)
+    return fmt(v, digits, none="\u2013")
 
 
 def _attr(v: Any) -> str:

@@ -10,6 +10,7 @@ import os
 import sys
 
 from ..errors import UcsioError
+from . import add_uncertainty_options
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -19,13 +20,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="write a self-contained HTML report (tables, inline SVG charts)")
     p.add_argument("--patch-dir", metavar="DIR", default=None,
                    help="write patched copies of the controller files there (never the originals)")
-    p.add_argument("--uncertainty", type=int, default=0, metavar="N",
-                   help="Monte Carlo uncertainty of every accepted entry from N perturbed copies")
-    p.add_argument("--sigma-laser", type=float, default=0.015, metavar="MM",
-                   help="laser noise per axis for --uncertainty (default 0.015)")
-    p.add_argument("--sigma-robot", type=float, default=0.05, metavar="MM",
-                   help="robot noise per axis for --uncertainty (default 0.05)")
-    p.add_argument("--seed", type=int, default=0, help="random seed for --uncertainty (default 0)")
+    add_uncertainty_options(p, "of every accepted entry")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bar (it is only drawn when stderr is a terminal)")
 

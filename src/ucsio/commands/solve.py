@@ -7,6 +7,7 @@ import argparse
 import os
 
 from ..errors import UcsioError
+from . import add_uncertainty_options
 from ..files import atomic_write_text
 
 
@@ -24,13 +25,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--exclude", action="append", default=[], metavar="NAME",
                    help="drop this point by hand (repeatable)")
     p.add_argument("--no-exclusion", action="store_true", help="keep every point")
-    p.add_argument("--uncertainty", type=int, default=0, metavar="N",
-                   help="Monte Carlo uncertainty from N perturbed copies")
-    p.add_argument("--sigma-laser", type=float, default=0.015, metavar="MM",
-                   help="laser noise per axis for --uncertainty (default 0.015)")
-    p.add_argument("--sigma-robot", type=float, default=0.05, metavar="MM",
-                   help="robot noise per axis for --uncertainty (default 0.05)")
-    p.add_argument("--seed", type=int, default=0, help="random seed for --uncertainty (default 0)")
+    add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
                    help="write the result as JSON (atomically)")
 
