@@ -267,7 +267,8 @@ def test_refusals_always(tmp_path, capsys, path, name, fragment):
 @pytest.mark.parametrize("path,name,fragment", [
     (CELL, "tHeld", "held by the robot"),
     (CELL, "wobjHeld", "robhold TRUE"),
-    (CELL, "wobjOffset.oframe", "relative to the user frame"),
+    (CELL, "wobjMoving.oframe", "not a fixed frame in robot world"),
+    (CELL, "wobjHeld.oframe", "not a fixed frame in robot world"),
     (CELL, "pCorr", "not robot world"),
     (REFS, "nozzle", "BASE_TYPE #TCP"),
     (REFS, "positioner", "external kinematic"),
@@ -294,6 +295,23 @@ def test_measured_fits_world_frames(tmp_path, capsys):
         assert main(["patch", str(path), "--frame", name, "--measured", str(sol)]) == 0, name
     assert main(["patch", str(CELL), "--frame", "wobjPlain", "--oframe", "--measured", str(sol)]) == 0
     capsys.readouterr()
+
+
+def test_measured_object_frame_is_written_in_its_user_frame(tmp_path, capsys):
+    """world = uframe * oframe, so a measured world frame W goes into the
+    object frame as uframe^-1 * W; diff compares it there too."""
+    from ucsio import api
+
+    world = Pose.from_abc(620.0, 75.0, 12.5, 30.0, 0.0, 0.0)
+    result = api.patch(CELL, "wobjOffset.oframe", world, measured=True)
+    assert result.warnings == []
+    patched = parse(Document(result.new_bytes, CELL))
+    back = patched.frame("wobjOffset.oframe")
+    uframe = patched.frame("wobjOffset").pose
+    assert (back.pose.x, back.pose.y, back.pose.z) == pytest.approx((120.0, 75.0, 12.5), abs=1e-9)
+    assert uframe.compose(back.pose).abc == pytest.approx(world.abc, abs=1e-4)
+    d = api.diff_frame(CELL, "wobjOffset.oframe", world)
+    assert (d["dx"], d["dy"], d["dz"]) == pytest.approx((20.0, 25.0, 12.5), abs=1e-9)
 
 
 def test_rejected_solution_refused(tmp_path, capsys):

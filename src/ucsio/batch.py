@@ -498,27 +498,16 @@ def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
     return frame.pose.t
 
 
-def _inverse(p: Pose) -> Pose:
-    m = p.matrix
-    mt = tuple(tuple(m[j][i] for j in range(3)) for i in range(3))
-    t = tuple(-sum(mt[i][j] * p.t[j] for j in range(3)) for i in range(3))
-    return Pose.from_matrix(mt, t)
-
-
 def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
-    """The fit is the UCS in robot world; an ABB object frame is relative to
-    its wobj's user frame, so express it there."""
-    if frame.reference == "uframe" and frame.name.lower().endswith(".oframe"):
-        uframe = cf.frame(frame.name[: -len(".oframe")]).pose
-        if uframe is None:
-            raise UcsioError(f"{frame.name}: its user frame has no complete value",
-                             file=frame.file, line=frame.line)
-        return _inverse(uframe).compose(fit)
-    if frame.reference not in ("world", "unknown"):
-        raise UcsioError(f"frame {frame.name} is relative to {frame.reference!r}, not robot world:"
-                         " a measured UCS cannot be compared with it", file=frame.file,
-                         line=frame.line)
-    return fit
+    """The fit is the UCS in robot world; express it where the frame is given
+    (an ABB object frame: in its user frame). A frame relative to something
+    else (a flange, a machine) cannot be compared with a measured UCS."""
+    from .patch import measured_in_parent, reference_problem
+
+    why = reference_problem(cf, frame)
+    if why and frame.reference != "unknown":  # pose data, plain FRAME variables: as given
+        raise UcsioError(f"frame {frame.name}: {why}", file=frame.file, line=frame.line)
+    return measured_in_parent(cf, frame, fit)
 
 
 def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 0.015,

@@ -58,6 +58,12 @@ class Pose(Value):
         qc = rot.quat_canonical(q)
         return Pose(self.x + t[0], self.y + t[1], self.z + t[2], qc, rot.quat_to_abc(qc))
 
+    def inverse(self) -> "Pose":
+        """The parent expressed in this frame: p_frame = R^T (p_parent - t)."""
+        mt = rot.transpose(self.matrix)
+        t = rot.matvec(mt, (-self.x, -self.y, -self.z))
+        return Pose.from_matrix(mt, t)
+
     def apply(self, p) -> tuple[float, float, float]:
         v = rot.matvec(self.matrix, p)
         return (v[0] + self.x, v[1] + self.y, v[2] + self.z)

@@ -248,14 +248,31 @@ def resolve_name(name: str, oframe: bool) -> str:
     return name
 
 
-def _identity(p: Pose | None) -> bool:
-    return (p is not None and all(abs(v) <= 5e-4 for v in p.t)
-            and rot.quat_angle(p.q, (1.0, 0.0, 0.0, 0.0)) <= 1e-4)
+def _object_frame_parent(cf: ControllerFile, frame: Frame) -> Frame | None:
+    """The wobj whose user frame an ABB object frame hangs from, or None."""
+    if frame.vendor != "abb" or frame.info.get("component") != "oframe":
+        return None
+    try:
+        return cf.frame(frame.name[: -len(".oframe")])
+    except UcsioError:
+        return None
+
+
+def measured_in_parent(cf: ControllerFile, frame: Frame, world: Pose) -> Pose:
+    """A measured UCS (robot world) expressed where ``frame`` is given: an ABB
+    object frame is relative to its user frame (world = uframe * oframe), so
+    it becomes uframe^-1 * world; every other frame is compared as it is
+    (reference_problem says when that is not robot world)."""
+    uframe = _object_frame_parent(cf, frame)
+    if uframe is not None and uframe.reference == "world" and uframe.pose is not None:
+        return uframe.pose.inverse().compose(world)
+    return world
 
 
 def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
     """Why a measured solution (the UCS in robot world) does not fit this
-    frame's reference, or None when it does."""
+    frame's reference, or None when it does (directly, or for an object frame
+    through its user frame: measured_in_parent)."""
     ref = frame.reference
     if frame.vendor == "kuka" and frame.type == "BASE_DATA" and \
             str(frame.info.get("base_type") or "").upper() == "#TCP":
@@ -267,15 +284,11 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
     if ref == "world":
         return None
     if frame.vendor == "abb" and frame.info.get("component") == "oframe":
-        base = frame.name[: -len(".oframe")]
-        try:
-            uframe = cf.frame(base)
-        except UcsioError:
-            uframe = None
-        if uframe is not None and uframe.reference == "world" and _identity(uframe.pose):
+        uframe = _object_frame_parent(cf, frame)
+        if uframe is not None and uframe.reference == "world" and uframe.pose is not None:
             return None
-        return ("the object frame is relative to the user frame, which is not the identity; "
-                "a measured frame is in robot world (patch the user frame instead)")
+        return ("the object frame is relative to a user frame that is not a fixed frame "
+                "in robot world; patch the user frame instead")
     if ref == "flange":
         if frame.vendor == "kuka" and frame.type == "BASE_DATA":
             return "this base is held by the robot (relative to the flange)"
@@ -413,6 +426,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
                          "nothing to patch", **where)
     warnings: list[str] = []
     if measured:
+        pose = measured_in_parent(cf, frame, pose)
         why = reference_problem(cf, frame)
         if why:
             if not force:

@@ -22,7 +22,7 @@ from .diff import DEFAULT_TOLERANCE, frame_delta
 from .document import Document
 from .errors import UcsioError
 from .frames import Frame, Pose
-from .patch import _close32, poses_equal, reference_problem, resolve_name
+from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
 
 DEVNULL = os.devnull
 
@@ -39,7 +39,7 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
                          "reference": frame.reference}
     if frame.label:
         d["label"] = frame.label
-    d.update(frame_delta(frame.pose, measured, tolerance))
+    d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
     why = reference_problem(cf, frame)
     if why:
         d["warning"] = f"{frame.name}: {why}; the measured frame is in robot world"
