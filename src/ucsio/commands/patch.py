@@ -2,15 +2,18 @@
 (ABB quaternion, KUKA A, B, C), changing only that frame's numbers.
 
 Without -o or --in-place the unified diff of the patch is printed and nothing
-is written (exit 0). Refused with exit 2, nothing written: an unknown or
-ambiguous name, a frame with no literal value, a moving user frame (ufprog
-FALSE), a measured (world) solution for a frame that is not relative to world
-(a robot-held tool, KUKA BASE_TYPE #TCP or a base on an external kinematic,
-an ABB wobj with robhold TRUE, an oframe under a non-identity uframe) or a
-RAPID PERS that another module in the same folder also declares (RAPID shares
-it; --force overrides these two), a rejected solution, and a file that changed
-on disk since it was read. --set and --set-q take the values as given, in the
-frame's own reference (negative values need no "=": --set -5,1,2,0,0,0)."""
+is written (exit 0). A measured solution is the UCS in robot world; for an
+ABB object frame (NAME.oframe) it is written as uframe^-1 * world.
+
+Refused with exit 2, nothing written: an unknown or ambiguous name, a frame
+with no literal value, a moving user frame (ufprog FALSE), a measured (world)
+solution for a frame that is not relative to world (a robot-held tool, KUKA
+BASE_TYPE #TCP or a base on an external kinematic, an ABB wobj with robhold
+TRUE, an oframe of a moving or robot-held wobj) or a RAPID PERS that another
+module in the same folder also declares (RAPID shares it; --force overrides
+these two), a rejected solution, and a file that changed on disk since it was
+read. --set and --set-q take the values as given, in the frame's own
+reference (negative values need no "=": --set -5,1,2,0,0,0)."""
 from __future__ import annotations
 
 import sys
