@@ -415,3 +415,12 @@ def test_cli_tool_from_real_rapid_file(capsys, name, rc, words):
         assert [p["name"] for p in d["points"] if not p["used"]] == ["P6"]
     else:
         assert out == "" and words in err
+
+
+@pytest.mark.parametrize("option,value", [("--sigma-laser", "-1"), ("--sigma-robot", "nan"),
+                                          ("--sigma-laser", "inf")])
+def test_bad_noise_levels_are_refused(option, value, capsys):
+    from ucsio.cli import main
+    rc = main(["solve", str(FIXTURES / "abb_wobj.csv"), "--uncertainty", "10", option, value])
+    err = capsys.readouterr().err
+    assert rc == 2 and option in err and err.count("\n") == 1

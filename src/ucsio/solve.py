@@ -207,6 +207,13 @@ def solve(measurement, tcp=(0.0, 0.0, 0.0), *, threshold: float = DEFAULT_THRESH
 
 # ---------------------------------------------------------------- uncertainty
 
+def check_sigmas(sigma_laser: float, sigma_robot: float) -> None:
+    """Noise levels are standard deviations: finite and not negative."""
+    for name, v in (("--sigma-laser", sigma_laser), ("--sigma-robot", sigma_robot)):
+        if not (math.isfinite(v) and v >= 0):
+            raise UcsioError(f"{name} {v}: a standard deviation must be a finite number >= 0 (mm)")
+
+
 def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples: int = 10000,
                 sigma_laser: float = DEFAULT_SIGMA_LASER, sigma_robot: float = DEFAULT_SIGMA_ROBOT,
                 seed: int = 0) -> dict[str, Any]:
@@ -236,6 +243,7 @@ def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples
         robot = robot_poses
     n = len(laser)
     w = np.ones(n) if weights is None else np.asarray(weights, dtype=float)
+    check_sigmas(sigma_laser, sigma_robot)
     if n_samples < 2:
         raise UcsioError("--uncertainty needs at least 2 samples")
     nominal = horn.absolute_orientation(laser, robot, w)
@@ -300,5 +308,5 @@ def solution_uncertainty(measurement, sol: Solution, n_samples: int,
 # ---------------------------------------------------------------- SOLUTION.json
 
 
-__all__ = ["Solution", "PointResult", "solve", "solve_points", "leave_one_out", "uncertainty",
+__all__ = ["Solution", "PointResult", "solve", "solve_points", "leave_one_out", "uncertainty", "check_sigmas",
            "analytical_std", "solution_uncertainty", "load_solution", "pose_from_json"]

@@ -70,6 +70,9 @@ def run(args) -> int:
 
     if args.uncertainty and args.uncertainty < 2:
         raise UcsioError("--uncertainty N: needs at least 2 samples")
+    if args.uncertainty:
+        from ..solve import check_sigmas
+        check_sigmas(args.sigma_laser, args.sigma_robot)
     if args.output is not None:
         folder = os.path.dirname(os.path.abspath(args.output))
         if not os.path.isdir(folder):
