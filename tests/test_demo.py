@@ -61,3 +61,12 @@ def test_demo_api():
     from ucsio import api
     d = api.demo()
     assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02"]
+
+
+def test_demo_gate_and_bad_out(tmp_path):
+    # a tolerance the shipped cells (dt_mean ~6 mm) cannot meet: the gate fails, exit 1
+    res = run(tmp_path, "--tolerance", "5")
+    assert res.returncode == 1 and "failed its gate" in res.stdout
+    (tmp_path / "a_file").write_text("")
+    res = run(tmp_path, "--out", str(tmp_path / "a_file"))
+    assert res.returncode == 2 and res.stderr.count("\n") == 1 and "--out" in res.stderr

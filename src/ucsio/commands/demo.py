@@ -18,9 +18,10 @@ def run(args) -> int:
     from ..demo import run_demo
 
     result = run_demo(out=args.out, tolerance=args.tolerance)
+    status = 0 if result["ok"] else 1   # a cell over tolerance or rejected: a failed gate
     if args.json:
         emit_json(result)
-        return 0
+        return status
     for k, cell in enumerate(result["cells"]):
         if k:
             print()
@@ -32,7 +33,7 @@ def run(args) -> int:
         print(f"patched copies written under {result['out']}")
     else:
         print("nothing written (ucsio demo --out DIR writes the patched copies)")
-    return 0
+    return status
 
 
 def print_cell(cell: dict) -> None:

@@ -16,6 +16,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from ..errors import UcsioError
+
 
 @dataclass(frozen=True)
 class Cell:
@@ -63,7 +65,11 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     written = None
     if out is not None and sol.accepted:
         folder = Path(out) / Path(cell.controller).parent.name
-        folder.mkdir(parents=True, exist_ok=True)
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UcsioError(f"--out: cannot make the folder: {exc.strerror or exc}",
+                             file=str(folder)) from None
         written = save(result, folder / Path(cell.controller).name)
     label = f"a/{cell.controller}"
     return {
