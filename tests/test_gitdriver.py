@@ -84,3 +84,23 @@ def test_textconv_driver(repo):
     changed = [ln for ln in out.splitlines()
                if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
     assert len(changed) == 2
+
+
+def test_external_diff_never_hides_other_changes(repo):
+    git(repo, "config", "diff.ucsio.command", UCSIO)
+    # only a frame moved: the frame summary says it all, no text diff appended
+    patch(repo, "R01/cell.mod", "--frame", "wobjPlain", "--set=1,2,3,0,0,0")
+    out = git(repo, "diff")
+    assert "~ wobjPlain.oframe" not in out and "~ wobjPlain (wobjdata): value changed" in out
+    assert "lines outside frame values changed" not in out
+    # a comment changed as well: the text diff follows the frame summary
+    path = repo / "R01" / "cell.mod"
+    path.write_bytes(path.read_bytes().replace(b"one frame per refusal rule", b"one frame per rule"))
+    out = git(repo, "diff")
+    assert "lines outside frame values changed too" in out
+    assert "+    ! ucsio patch fixture: one frame per rule, and SPEC's diff example." in out
+    # no frame changed at all, but a routine did: still shown
+    git(repo, "checkout", "--", ".")
+    path.write_bytes(path.read_bytes().replace(b"v1000, fine", b"v500, fine"))
+    out = git(repo, "diff")
+    assert "no frame changed" in out and "+        MoveL Offs(pHome,0,0,100), v500, fine" in out

@@ -211,22 +211,61 @@ def load_as(path: str, display: str) -> ControllerFile | None:
 
 def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]:
     """Text (and the structured result, or None when the files could not be
-    parsed) for git's external diff driver."""
+    parsed) for git's external diff driver: the frame changes, then the text
+    diff whenever lines outside frame values changed too, so that a changed
+    comment, robtarget or routine is never hidden behind "no frame changed"."""
     try:
-        result = diff_files(load_as(old_file, path), load_as(new_file, path))
+        old, new = load_as(old_file, path), load_as(new_file, path)
+        result = diff_files(old, new)
     except UcsioError as exc:
         return (f"ucsio diff a/{path} b/{path}\n  not a controller file ucsio can read ({exc}); "
                 "plain text diff:\n" + plain_diff(path, old_file, new_file)), None
-    return format_files_diff(result, path, path), result
+    text = format_files_diff(result, path, path)
+    if _other_lines_changed(old, new):
+        text += "  lines outside frame values changed too; text diff:\n"
+        text += plain_diff(path, old_file, new_file)
+    return text, result
+
+
+def _text_lines(text: str) -> list[str]:
+    lines = text.split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()                     # the final newline ends a line, it adds none
+    return [ln.rstrip("\r") for ln in lines]
+
+
+def _lines(cf: ControllerFile | None) -> list[str]:
+    return [] if cf is None else _text_lines(cf.document.text)
+
+
+def _frame_lines(cf: ControllerFile | None) -> set[int]:
+    """0-based numbers of the lines that hold frame values."""
+    if cf is None:
+        return set()
+    doc = cf.document
+    return {doc.line_of(n.span.start) - 1 for f in cf.frames for n in f.numbers.values()}
+
+
+def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None) -> bool:
+    a, b = _lines(old), _lines(new)
+    fa, fb = _frame_lines(old), _frame_lines(new)
+    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
+    for tag, i1, i2, j1, j2 in matcher.get_opcodes():
+        if tag == "equal":
+            continue
+        if not (set(range(i1, i2)) <= fa and set(range(j1, j2)) <= fb):
+            return True
+    return False
 
 
 def plain_diff(path: str, old_file: str, new_file: str) -> str:
     def lines(p):
         if p == DEVNULL:
             return []
-        raw = open(p, "rb").read()
-        return [ln.rstrip("\r") for ln in Document(raw, p).text.split("\n")]
-    out = difflib.unified_diff(lines(old_file), lines(new_file), f"a/{path}", f"b/{path}",
+        return _text_lines(Document(open(p, "rb").read(), p).text)
+    old_label = "/dev/null" if old_file == DEVNULL else f"a/{path}"
+    new_label = "/dev/null" if new_file == DEVNULL else f"b/{path}"
+    out = difflib.unified_diff(lines(old_file), lines(new_file), old_label, new_label,
                                lineterm="")
     return "\n".join(out) + "\n"
 
