@@ -168,8 +168,9 @@ def test_unnormalised_quaternion_and_massless_tool_are_linted():
                    b"  PERS tooldata t1:=[TRUE,[[0,0,100],[0.9,0,0,0]],[0,[0,0,0],[1,0,0,0],0,0,0]];\n"
                    b"  PERS wobjdata w1:=[FALSE,FALSE,\"STN1\",[[0,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n"
                    b"ENDMODULE\n", "lint.mod")
-    codes = {l.code for l in rapid.parse(doc).lints}
-    assert {"unnormalized-quaternion", "tool-mass", "moving-uframe"} <= codes
+    lints = rapid.parse(doc).lints
+    assert {"unnormalized-quaternion", "tool-mass", "moving-uframe"} <= {l.code for l in lints}
+    assert all(l.severity == "warning" for l in lints)
     ok = Document(b"MODULE m\n  PERS tooldata t1:=[TRUE,[[0,0,100],[1,0,0,0]],[1,[0,0,0],[1,0,0,0],0,0,0]];\nENDMODULE\n")
     assert rapid.parse(ok).lints == []
 
@@ -257,8 +258,20 @@ def test_check_reports_round_trip_and_lints():
     assert res.returncode == 0
     out = json.loads(res.stdout)
     assert out["ok"] and out["files"][0]["round_trip"] and out["files"][0]["lints"] == []
+    # a PERS or VAR without a value is legal RAPID: reported as info, the check passes
     res = run_cli("check", ABB / "variants.mod")
-    assert res.returncode == 1 and "no-value" in res.stdout
+    assert res.returncode == 0 and "info: no-value" in res.stdout
+
+
+def test_check_fails_on_warnings(tmp_path):
+    bad = tmp_path / "lint.mod"
+    bad.write_text("MODULE m\n  PERS tooldata t:=[TRUE,[[0,0,1],[0.9,0,0,0]],[1,[0,0,0],[1,0,0,0],0,0,0]];\n"
+                   "ENDMODULE\n")
+    res = run_cli("check", "--json", bad)
+    out = json.loads(res.stdout)
+    assert res.returncode == 1 and not out["ok"]
+    assert [(l["code"], l["severity"]) for l in out["files"][0]["lints"]] == \
+        [("unnormalized-quaternion", "warning")]
 
 
 def test_check_whole_corpus_round_trips():

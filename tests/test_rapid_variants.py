@@ -73,4 +73,4 @@ def test_headers_and_module_attributes(header, module_line):
 def test_pers_without_value():
     cf = rapid.parse(Document(b"MODULE m\n  PERS speeddata s;\n  PERS tooldata t;\nENDMODULE\n"))
     assert cf.frame("t").pose is None
-    assert [l.code for l in cf.lints] == ["no-value"]
+    assert [(l.code, l.severity) for l in cf.lints] == [("no-value", "info")]

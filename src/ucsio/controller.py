@@ -18,13 +18,19 @@ KUKA_SUFFIXES = {".dat", ".src", ".sub"}
 
 
 class Lint(Value):
-    __slots__ = ("line", "col", "code", "message")
+    """A finding of ``check``. A ``warning`` fails the check (exit 1); an
+    ``info`` is legal code worth knowing (a PERS whose value another module
+    gives) and does not."""
 
-    def __init__(self, line: int, col: int, code: str, message: str):
+    __slots__ = ("line", "col", "code", "message", "severity")
+
+    def __init__(self, line: int, col: int, code: str, message: str, severity: str = "warning"):
         self.line, self.col, self.code, self.message = line, col, code, message
+        self.severity = severity
 
     def as_dict(self) -> dict:
-        return {"line": self.line, "col": self.col, "code": self.code, "message": self.message}
+        return {"line": self.line, "col": self.col, "code": self.code, "message": self.message,
+                "severity": self.severity}
 
 
 class ControllerFile:
@@ -40,9 +46,9 @@ class ControllerFile:
     def path(self) -> str:
         return self.document.path
 
-    def lint(self, offset: int, code: str, message: str) -> None:
+    def lint(self, offset: int, code: str, message: str, severity: str = "warning") -> None:
         line, col = self.document.line_col(offset)
-        self.lints.append(Lint(line, col, code, message))
+        self.lints.append(Lint(line, col, code, message, severity))
 
     def matches(self, name: str) -> list[Frame]:
         key = name.strip().casefold()

@@ -414,7 +414,8 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
     numbers: dict[str, Number] = {}
     if parsed is None:
         if decl.value is not None:  # a declaration without any value is linted once, above
-            cf.lint(at, "not-literal", f"{name}: not a literal pose; listed without numbers, not patchable")
+            cf.lint(at, "not-literal", f"{name}: not a literal pose; listed without numbers, "
+                    "not patchable", severity="info")
         info = dict(info, value=None)
     else:
         numbers, (t, q) = parsed
@@ -448,7 +449,8 @@ def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
         storage = " ".join(x for x in (d.scope, d.storage) if x)
         base_info = {"storage": storage, "module": d.module}
         if d.value is None:
-            cf.lint(d.start, "no-value", f"{d.name}: declared without a value; not patchable here")
+            cf.lint(d.start, "no-value", f"{d.name}: declared without a value (legal: another "
+                    "module or the default gives it); not patchable here", severity="info")
         for name, v in _elements(d.value, d.dims, d.name):
             at = _start_of(v, d.start)
             if kind == "pose":

@@ -1,6 +1,8 @@
 """Parse every byte with the grammar, prove the byte-exact round trip, and lint
 (unnormalised quaternions, robot-held tools without mass, moving user frames,
-KUKA labels and references). Exit 1 when there is any finding."""
+KUKA labels and references). Exit 1 when there is any warning; an "info"
+(legal code worth knowing, such as a PERS whose value another module gives)
+does not fail the check."""
 from __future__ import annotations
 
 from ..output import emit_json
@@ -24,7 +26,8 @@ def check_file(path: str) -> dict:
 
 def run(args) -> int:
     results = [check_file(f) for f in args.files]
-    bad = any(not r["round_trip"] or r["lints"] for r in results)
+    bad = any(not r["round_trip"] or any(l["severity"] != "info" for l in r["lints"])
+              for r in results)
     if args.json:
         emit_json({"files": results, "ok": not bad})
         return 1 if bad else 0
@@ -32,5 +35,5 @@ def run(args) -> int:
         status = "round trip ok" if r["round_trip"] else "ROUND TRIP FAILED"
         print(f"{r['file']}: {r['vendor']}, {r['encoding']}, {r['frames']} frames, {status}")
         for l in r["lints"]:
-            print(f"{r['file']}:{l['line']}:{l['col']}: {l['code']}: {l['message']}")
+            print(f"{r['file']}:{l['line']}:{l['col']}: {l['severity']}: {l['code']}: {l['message']}")
     return 1 if bad else 0
