@@ -51,8 +51,14 @@ class ControllerFile:
         self.lints.append(Lint(line, col, code, message, severity))
 
     def matches(self, name: str) -> list[Frame]:
+        """Frames called ``name`` (case-insensitive). A frame's own name wins
+        over a label: a KUKA base labelled "BASE_DATA[1]" cannot take the
+        place of the real BASE_DATA[1]."""
         key = name.strip().casefold()
-        return [f for f in self.frames if any(n.casefold() == key for n in f.names)]
+        by_name = [f for f in self.frames if f.name.casefold() == key]
+        if by_name:
+            return by_name
+        return [f for f in self.frames if f.label is not None and f.label.casefold() == key]
 
     def frame(self, name: str) -> Frame:
         """The frame called ``name`` (case-insensitive; KUKA labels too)."""

@@ -409,6 +409,7 @@ def _loaddata(v) -> dict | None:
 def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_value,
                 reference: str, info: dict, at: int) -> Frame:
     doc = cf.document
+    at = _start_of(pose_value, at)  # a multi-line wobj: the oframe's line is its own
     parsed = _pose(pose_value)
     pose = None
     numbers: dict[str, Number] = {}
