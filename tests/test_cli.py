@@ -4,6 +4,8 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import pytest
+
 from conftest import FIXTURES
 
 
@@ -34,6 +36,10 @@ def test_negative_value_lists_need_no_equals_sign(tmp_path):
     assert "-20.670, 89.730, 33.440" in res.stdout
 
 
-def test_usage_error_exits_2():
-    res = run("frames")
-    assert res.returncode == 2 and "usage" in res.stderr
+@pytest.mark.parametrize("args", [["frames"], ["solve", "x.csv", "--threshold", "abc"],
+                                  ["patch", "f.mod", "--frame", "w", "--measured", "s.json",
+                                   "--set-q", "1,2,3,1,0,0,0"], ["nonsense"]])
+def test_usage_error_is_one_line_and_exits_2(args):
+    res = run(*args)
+    assert res.returncode == 2 and res.stdout == ""
+    assert res.stderr.count("\n") == 1 and res.stderr.startswith("ucsio")
