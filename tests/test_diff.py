@@ -187,3 +187,11 @@ def test_api_solution_forms(tmp_path):
         d = api.diff_frame(REFS, "spec_base", form)
         assert d["dt_mean"] == pytest.approx(5.892, abs=5e-4)
     shutil.copy(sol, tmp_path / "copy.json")
+
+
+def test_per_axis_deltas_use_canonical_angles():
+    from ucsio.diff import frame_delta
+    from ucsio.frames import Pose
+    # the same rotation written out of SPEC's ranges: no per-axis difference
+    d = frame_delta(Pose.from_abc(1, 2, 3, 200, 100, -181), Pose.from_abc(1, 2, 3, 20, 80, -1))
+    assert (d["da"], d["db"], d["dc"], d["angle"]) == pytest.approx((0, 0, 0, 0), abs=1e-9)

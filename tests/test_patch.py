@@ -109,7 +109,10 @@ def test_quaternion_written_normalised_and_on_the_old_side():
                 assert close_pose(again.pose, target)
             assert abs(sum(c * c for c in written) - 1) <= QUAT_NORM_MAX
             old = [frame.numbers[k].value for k in ("q1", "q2", "q3", "q4")]
-            assert sum(a * b for a, b in zip(old, written)) >= 0     # sign on the old side
+            if abs(written[0]) > 5e-7:
+                assert written[0] > 0                                 # SPEC: q1 >= 0
+            else:
+                assert sum(a * b for a, b in zip(old, written)) >= 0  # q1 = 0: the old side
             for c in changes:
                 if c.component.startswith("q"):
                     assert len(c.new.split(".")[-1]) <= 6 and "e" not in c.new.lower()
@@ -468,3 +471,25 @@ def test_api_round_trip(tmp_path):
     assert close_pose(api.frame(f, "wobjTable").pose, target)
     assert Path(str(f) + ".bak").read_bytes() == CELL.read_bytes()
     assert math.isclose(api.diff_frame(f, "wobjTable", target)["dt_mean"], 0, abs_tol=1e-3)
+
+
+def test_quaternion_written_with_q1_not_negative():
+    cf = load(CELL)
+    neg = cf.frame("wobjNeg")                      # the file has q1 < 0
+    assert neg.numbers["q1"].value < 0
+    same = Pose.from_quat(neg.pose.x, neg.pose.y, neg.pose.z, neg.pose.q)
+    assert plan(neg, same) == []                   # same orientation: no byte changes
+    turned = Pose.from_abc(neg.pose.x, neg.pose.y, neg.pose.z, 30.0, 0.0, 0.0)
+    by = {c.component: c.new for c in plan(neg, turned)}
+    assert float(by["q1"]) > 0
+
+
+@pytest.mark.parametrize("given,written", [((10.0, 100.0, 0.0), (-170.0, 80.0, 180.0)),
+                                           ((370.0, 0.0, 0.0), (10.0, 0.0, 0.0)),
+                                           ((0.0, 0.0, -180.0), (0.0, 0.0, 180.0))])
+def test_kuka_angles_written_in_spec_ranges(given, written):
+    cf = load(REFS)
+    res = patch_frame(cf, "spec_base", Pose.from_abc(1, 2, 3, *given), measured=False)
+    back = parse(Document(res.new_bytes, REFS)).frame("spec_base")
+    assert [back.numbers[k].value for k in "abc"] == pytest.approx(written, abs=1e-9)
+    assert rot.quat_angle(back.pose.q, rot.abc_to_quat(*given)) < 1e-4

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from .frames import Pose
-from .rotations import quat_angle, wrap180
+from .rotations import canonical_abc, quat_angle, wrap180
 
 DEFAULT_TOLERANCE = 100.0
 GROUP_BOUNDS = (10.0, 25.0, 50.0, 100.0)   # mm; group k is below GROUP_BOUNDS[k-1]
@@ -26,7 +26,10 @@ def group_of(dt_mean: float) -> int:
 
 def frame_delta(simulated: Pose, measured: Pose, tolerance: float = DEFAULT_TOLERANCE) -> dict:
     dx, dy, dz = measured.x - simulated.x, measured.y - simulated.y, measured.z - simulated.z
-    da, db, dc = (wrap180(m - s) for m, s in zip(measured.abc, simulated.abc))
+    # per-axis deltas between SPEC's canonical angles: a file that writes the
+    # same rotation as A 200, B 100, C -181 must not show +180 deg on two axes
+    da, db, dc = (wrap180(m - s) for m, s in zip(canonical_abc(measured.abc, measured.q),
+                                                  canonical_abc(simulated.abc, simulated.q)))
     dt_mean = (abs(dx) + abs(dy) + abs(dz)) / 3.0
     return {
         "simulated": simulated.as_dict(),

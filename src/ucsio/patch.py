@@ -7,10 +7,12 @@ value spans (``Frame.numbers``), in the vendor's native form:
   the quaternion q1..q4. Translations to 0.001 mm; quaternion components to 6
   decimals, normalised *after* rounding: the components that moved are nudged
   by at most a few 1e-6 so that the text, parsed back, has |sum q^2 - 1| <=
-  1e-6 (FORMATS.md 1.6). The sign of the quaternion is chosen on the old
-  value's side (positive dot product), so the diff stays small.
+  1e-6 (FORMATS.md 1.6). Written with q1 >= 0 (SPEC); where q1 rounds to 0,
+  the sign on the old value's side (positive dot product) keeps the diff
+  small.
 - KUKA (``BASE_DATA``, ``TOOL_DATA``, ``FRAME``): X, Y, Z to 0.001 mm and A, B,
-  C to 0.0001 deg; REAL always with a decimal point.
+  C to 0.0001 deg in SPEC's ranges (B in [-90, 90], A and C in (-180, 180]);
+  REAL always with a decimal point.
 
 A component whose value does not change at the written precision keeps its
 original text, so the diff shows only what moved and patching a file with the
@@ -153,15 +155,18 @@ _NUDGES = {n: sorted(itertools.product((0, -1, 1, -2, 2), repeat=n),
 def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
     nums = [frame.numbers[k] for k in ("q1", "q2", "q3", "q4")]
     old = [n.value for n in nums]
-    q = list(pose.q)
-    if sum(a * b for a, b in zip(old, q)) < 0:
-        q = [-c for c in q]
     half = 0.5 * 10.0 ** -QUAT_DECIMALS
     norm = math.sqrt(sum(c * c for c in old))
     if norm > 0:
         old_unit = [c / norm for c in old]
-        if all(abs(a - b) <= half for a, b in zip(q, old_unit)):
-            return []          # the same orientation at the written precision
+        q_can = pose.q
+        if any(all(abs(s * a - b) <= half for a, b in zip(q_can, old_unit)) for s in (1, -1)):
+            return []          # the same orientation at the written precision: keep the text
+    # SPEC writes q1 >= 0. Only where q1 rounds to 0 are both signs that, and
+    # then the one on the old value's side keeps the diff small.
+    q = list(pose.q)
+    if abs(q[0]) < half and sum(a * b for a, b in zip(old, q)) < 0:
+        q = [-c for c in q]
     step = 10.0 ** -QUAT_DECIMALS
     style = _column(nums, QUAT_DECIMALS)
 
@@ -210,7 +215,7 @@ def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
         pass
     out = []
     style = _column(nums, ANGLE_DECIMALS)
-    for key, n, v in zip("abc", nums, pose.abc):
+    for key, n, v in zip("abc", nums, rot.canonical_abc(pose.abc, pose.q)):
         if abs(rot.wrap180(v - n.value)) <= half:
             continue
         text = format_number(v, ANGLE_DECIMALS, point=True, old_text=style)

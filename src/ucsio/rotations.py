@@ -106,6 +106,15 @@ def matrix_to_abc(m: Matrix) -> tuple[float, float, float]:
     return wrap180(a), max(-90.0, min(90.0, b)) + 0.0, wrap180(c)
 
 
+def canonical_abc(abc: tuple[float, float, float], q: Quat) -> tuple[float, float, float]:
+    """A, B, C as given when they are in SPEC's ranges (B in [-90, 90], A and
+    C in (-180, 180]), else the canonical angles of the same rotation ``q``."""
+    a, b, c = abc
+    if -90.0 <= b <= 90.0 and -180.0 < a <= 180.0 and -180.0 < c <= 180.0:
+        return abc
+    return quat_to_abc(q)
+
+
 def abc_to_quat(a: float, b: float, c: float) -> Quat:
     ha, hb, hc = (math.radians(v) / 2 for v in (a, b, c))
     ca, sa = math.cos(ha), math.sin(ha)
