@@ -595,3 +595,36 @@ def test_repeated_values_are_read_once_with_their_own_positions():
     with pytest.raises(UcsioError) as e:
         krl.parse(doc_of(bad))
     assert (e.value.line, e.value.col) == (6, 17) and "malformed number" in e.value.message
+
+
+
+def test_angles_outside_spec_ranges_are_listed_as_written():
+    # KUKA itself writes B -180.000 (Zinkerreka TOOL_DATA[1]); frames lists A, B, C
+    # as written, and diff compares canonical angles (tests/test_diff.py)
+    doc = Document(b"DEFDAT x\nDECL FRAME f={X 1.0,Y 2.0,Z 3.0,A 200.0,B 100.0,C -181.0}\nENDDAT\n", "x.dat")
+    cf = krl.parse(doc)
+    assert cf.lints == [] and cf.frame("f").pose.abc == (200.0, 100.0, -181.0)
+
+
+def test_cp1252_labels_read_as_windows_text():
+    raw = ('DEFDAT $CONFIG\nDECL FRAME BASE_DATA[2]\nBASE_DATA[1]={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0}\n'
+           'DECL CHAR BASE_NAME[2,24]\nBASE_NAME[1,]="Tisch \u2013 Stra\u00dfe \u20ac"\nENDDAT\n').encode("cp1252")
+    doc = Document(raw, "$config.dat")
+    cf = krl.parse(doc)
+    assert doc.encoding == "latin-1" and doc.to_bytes() == raw          # bytes untouched
+    assert cf.frame("tisch \u2013 STRASSE \u20ac".replace("STRASSE", "stra\u00dfe")).name == "BASE_DATA[1]"
+    assert cf.frames[0].label == "Tisch \u2013 Stra\u00dfe \u20ac"
+
+
+def test_empty_file_is_an_error():
+    for raw in (b"", b"\r\n  \n"):
+        with pytest.raises(UcsioError, match="empty file"):
+            krl.parse(Document(raw, "empty.dat"))
+
+
+def test_entry_name_wins_over_a_label_spelled_like_it():
+    raw = (b'DEFDAT $CONFIG\nDECL FRAME BASE_DATA[2]\nBASE_DATA[1]={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0}\n'
+           b'BASE_DATA[2]={X 9.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0}\nDECL CHAR BASE_NAME[2,24]\n'
+           b'BASE_NAME[2,]="BASE_DATA[1]"\nENDDAT\n')
+    cf = krl.parse(Document(raw, "$config.dat"))
+    assert cf.frame("base_data[1]").pose.x == 1.0

@@ -103,6 +103,14 @@ class Document:
         line, col = self.line_col(offset)
         return UcsioError(message, file=self.path, line=line, col=col)
 
+    def readable(self, s: str) -> str:
+        """Text from this file as a person reads it. A non-UTF-8 file is held
+        as Latin-1 (so every byte round-trips); its strings were written in
+        Windows-1252 ("Stra\xdfe \x80" is "Straße €"), so show them so."""
+        if self.encoding != "latin-1":
+            return s
+        return s.encode("latin-1").decode("cp1252", errors="replace")
+
     def slice(self, span: Span) -> str:
         return self.text[span.start:span.end]
 

@@ -500,6 +500,9 @@ def _defdat(tree, text: str, full: bool):
 def parse(doc: Document, full: bool = False) -> ControllerFile:
     """Parse a KRL data list into frames, lints and tables."""
     text = doc.text
+    if not text.strip():
+        # a fragment may hold any statements, but none at all is a failed transfer
+        raise doc.error("empty file: no KRL data (DEFDAT ... ENDDAT or declarations)", 0)
     if full:
         tree = _parse(doc, text, "file")
         stmts = _statements(tree, doc)
@@ -526,8 +529,8 @@ class _Interpreter:
         self.cf = cf
 
     # -- helpers --
-    def lint(self, offset: int, code: str, message: str) -> None:
-        self.cf.lint(offset, code, message)
+    def lint(self, offset: int, code: str, message: str, severity: str = "warning") -> None:
+        self.cf.lint(offset, code, message, severity)
 
     def run(self, stmts) -> None:
         frame_arrays: dict[str, tuple[str, list]] = {}     # KEY -> (spelling, dims)
@@ -577,7 +580,7 @@ class _Interpreter:
                 if v.kind != "string":
                     self.lint(v.start, "bad-label", f"{s.name.value}[{one},] is not a string")
                     continue
-                labels[(key[:4], one)] = (v.value, v.start)
+                labels[(key[:4], one)] = (self.cf.document.readable(v.value), v.start)
             elif key in ("TOOL_TYPE", "BASE_TYPE") and one is not None:
                 v = _value(s.value, s.delta)
                 if v.kind != "enum":
