@@ -371,20 +371,61 @@ def test_duplicate_name(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("text, words", [
-    ("[[entry]]\nname = 'x'\nmeasurment = 'a.csv'\n", "unknown key 'measurment'"),
     ("[[entry]\nname = 'x'\n", "not valid TOML"),
     (f"[[entry]]\n{ENTRY}", "needs a name"),
+    (f"[[entry]]\nname = ''\n{ENTRY}", "needs a name"),
+    ("[defaults]\nname = 'x'\n", "unknown key 'name'"),
+    ("[defaults]\ntcp = [0, 0, 0]\n", "no [[entry]]"),
+    (f"[defaults]\nthreshold = -1\n[[entry]]\nname = 'x'\n{ENTRY}", "threshold must be positive"),
+    (f"[defaults]\nmin_points = '6'\n[[entry]]\nname = 'x'\n{ENTRY}", "min_points"),
+    (f"[defaults]\ntool = 'tool1'\n[[entry]]\nname = 'x'\n{ENTRY}", "FILE:NAME"),
+    (f"[defaults]\ntcp = [0, 0, 0]\ntool = 'c.mod:t'\n[[entry]]\nname = 'x'\n{ENTRY}",
+     "either tcp or tool"),
+    (f"nonsense = 1\n[[entry]]\nname = 'x'\n{ENTRY}", "unknown top-level key"),
+])
+def test_bad_manifest(tmp_path, capsys, text, words):
+    """Problems of the manifest as a whole stay exit 2, one line, nothing run."""
+    assert words in _bad(tmp_path, capsys, text)
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[[entry]]\nname = 'x'\nmeasurment = 'a.csv'\n", "unknown key 'measurment'"),
     (f"[[entry]]\nname = 'x'\ntcp = [1, 2]\n{ENTRY}", "tcp must be a list of three numbers"),
     (f"[[entry]]\nname = 'x'\ntcp = [1, 2, 3]\ntool = 'c.mod:t'\n{ENTRY}", "either tcp or tool"),
     (f"[[entry]]\nname = 'x'\ntool = 'tool1'\n{ENTRY}", "FILE:NAME"),
     (f"[[entry]]\nname = 'x'\nmin_points = 2\n{ENTRY}", "min_points"),
+    (f"[[entry]]\nname = 'x'\nmin_points = '6'\n{ENTRY}", "min_points must be an integer"),
     (f"[[entry]]\nname = 'x'\nthreshold = -1\n{ENTRY}", "threshold must be positive"),
     ("[[entry]]\nname = 'x'\nmeasurement = 'a.csv'\n", "needs controller"),
-    ("[defaults]\nname = 'x'\n", "unknown key 'name'"),
-    ("[defaults]\ntcp = [0, 0, 0]\n", "no [[entry]]"),
+    ("[[entry]]\nname = 'x'\nmeasurement = 'a.csv'\ncontroller = 'c.mod'\n", "needs frame"),
 ])
-def test_bad_manifest(tmp_path, capsys, text, words):
-    assert words in _bad(tmp_path, capsys, text)
+def test_bad_entry_is_an_entry_error(tmp_path, capsys, text, words):
+    """A problem inside one [[entry]] makes that entry an error, counted;
+    the other entries still run (SPEC: one entry's failure never stops the
+    run)."""
+    _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(f"{_GOOD}\n{text}")
+    code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
+    assert code == 1 and err == ""
+    data = json.loads(out)
+    good, bad = data["entries"]
+    assert good["name"] == "good" and good["pass"]
+    assert bad["name"] == "x" and bad["status"] == "error" and bad["stage"] == "manifest"
+    assert words in bad["error"] and str(tmp_path / "m.toml") in bad["error"]
+    s = data["summary"]
+    assert (s["total"], s["passed"], s["errors"], s["success_rate"]) == (2, 1, 1, 0.5)
+    # the text table, the CSV and the report carry it too
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--csv", str(tmp_path / "o.csv"),
+                            "--report", str(tmp_path / "o.html")], capsys)
+    assert code == 1 and words in out and "exit 1: 1 entry failed" in out
+    rows = list(csv.DictReader((tmp_path / "o.csv").open()))
+    assert rows[1]["status"] == "error" and words in rows[1]["error"]
+    assert "error" in (tmp_path / "o.html").read_text()
+
+
+def test_bad_entries_do_not_hide_duplicates(tmp_path, capsys):
+    err = _bad(tmp_path, capsys, f"[[entry]]\nname = 'x'\nbogus = 1\n[[entry]]\nname = 'X'\n{ENTRY}")
+    assert "duplicate entry name 'X'" in err
 
 
 def test_missing_manifest(tmp_path, capsys):
@@ -442,24 +483,44 @@ def test_summarize_conventions():
     assert s["correlation"]["z"] is None                             # no variation
 
 
-def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
-    """An ABB object frame is relative to its user frame: the measured UCS
-    (robot world) is expressed there before the diff."""
+def _abb_cell(folder: Path, *, sibling: bool = False, csv_name: str = "m.csv"):
+    """cell.mod: wobj1 (user frame U in world, object frame [40,20,5]) and
+    the exact points of a measurement of the object frame's true pose
+    (m.csv) and of the user frame (u.csv). With ``sibling``, other.mod
+    declares the same PERS (patch_frame refuses to patch one of them)."""
     from ucsio.frames import Pose
 
     U = Pose.from_abc(1000.0, 200.0, 300.0, 90.0, 0.0, 0.0)
     O_true = Pose.from_abc(50.0, 20.0, 5.0, 10.0, 0.0, 0.0)
     world = U.compose(O_true)
     q = ",".join(f"{v:.6f}" for v in U.q)
-    (tmp_path / "cell.mod").write_text(
-        "MODULE cell\n  PERS wobjdata wobj1 := [FALSE,TRUE,\"\",[[1000,200,300],[" + q + "]],"
-        "[[40,20,5],[1,0,0,0]]];\nENDMODULE\n")
+    decl = ("  PERS wobjdata wobj1 := [FALSE,TRUE,\"\",[[1000,200,300],[" + q + "]],"
+            "[[40,20,5],[1,0,0,0]]];\n")
+    (folder / "cell.mod").write_text("MODULE cell\n" + decl + "ENDMODULE\n")
+    if sibling:
+        (folder / "other.mod").write_text("MODULE other\n" + decl + "ENDMODULE\n")
     laser = [(0, 0, 0), (500, 0, 0), (0, 400, 0), (500, 400, 0), (0, 0, 200), (500, 400, 200)]
     lines = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_q1,robot_q2,robot_q3,robot_q4"]
     for i, p in enumerate(laser):
         r = world.apply(p)
         lines.append(f"P{i + 1},{p[0]},{p[1]},{p[2]},{r[0]:.6f},{r[1]:.6f},{r[2]:.6f},1,0,0,0")
-    (tmp_path / "m.csv").write_text("\n".join(lines) + "\n")
+    (folder / csv_name).write_text("\n".join(lines) + "\n")
+    lines = [lines[0]]   # the user frame itself, measured: points of U
+    for i, p in enumerate(laser):
+        r = U.apply(p)
+        lines.append(f"P{i + 1},{p[0]},{p[1]},{p[2]},{r[0]:.6f},{r[1]:.6f},{r[2]:.6f},1,0,0,0")
+    (folder / "u.csv").write_text("\n".join(lines) + "\n")
+    return U, O_true
+
+
+_GOOD = ("[[entry]]\nname = 'good'\nmeasurement = 'm.csv'\ncontroller = 'cell.mod'\n"
+         "frame = 'wobj1.oframe'\n")
+
+
+def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
+    """An ABB object frame is relative to its user frame: the measured UCS
+    (robot world) is expressed there before the diff."""
+    _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(
         "[[entry]]\nname = 'o'\nmeasurement = 'm.csv'\ncontroller = 'cell.mod'\n"
         "frame = 'wobj1.oframe'\n")
@@ -469,3 +530,180 @@ def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
     assert (e["frame"]["x"], e["frame"]["y"], e["frame"]["z"]) == pytest.approx((50, 20, 5), abs=1e-5)
     assert e["frame"]["a"] == pytest.approx(10.0, abs=1e-6)
     assert e["dt_mean"] == pytest.approx(10.0 / 3, abs=1e-5)
+
+
+# ---------------------------------------------------------------- acceptance findings
+
+KUKA = ROOT / "src/ucsio/demo/data/R01_kuka"
+
+
+def _tcp_base_manifest(tmp_path) -> Path:
+    """An entry solved, then refused at the diff: BASE_TYPE #TCP (an external
+    TCP base): e is None but n_used, rms, points are there."""
+    cfg = json.dumps(str(KUKA / "$config.dat"))
+    m = tmp_path / "m.toml"
+    m.write_text(f"[[entry]]\nname = 'tcp base'\ncontroller = {cfg}\nframe = 'part_in_gripper'\n"
+                 f"measurement = {json.dumps(str(KUKA / 'base3_points.csv'))}\n"
+                 f"tool = {json.dumps(str(KUKA / '$config.dat') + ':TOOL_DATA[2]')}\n")
+    return m
+
+
+def test_failure_after_solve_in_every_output(tmp_path, capsys):
+    m = _tcp_base_manifest(tmp_path)
+    code, out, err = run_cli(["batch", str(m), "--report", str(tmp_path / "r.html"),
+                              "--csv", str(tmp_path / "r.csv")], capsys)
+    assert code == 1 and err == ""
+    assert "#TCP" in out and "exit 1: 1 entry failed" in out
+    html = (tmp_path / "r.html").read_text()
+    assert "#TCP" in html and "at the diff stage" in html
+    row = next(csv.DictReader((tmp_path / "r.csv").open()))
+    assert row["status"] == "error" and row["e"] == "" and int(row["n_used"]) > 0
+    code, out, _ = run_cli(["batch", str(m), "--json"], capsys)
+    e = json.loads(out)["entries"][0]
+    assert e["stage"] == "diff" and e["e"] is None and e["n_used"] > 0 and e["rms"] is not None
+
+
+def test_outputs_survive_any_missing_value(tmp_path):
+    """Every output of one entry, with each of its values in turn missing."""
+    from types import SimpleNamespace as NS
+
+    from ucsio.commands.batch import render
+    from ucsio.output import _clean
+    from ucsio.report import render_report
+
+    _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(_GOOD)
+    res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), uncertainty=20)
+    full = res.as_dict()
+    entry = full["entries"][0]
+    assert "uncertainty" in entry and "points" in entry
+    variants = []
+    for key in entry:
+        for value in (None, "drop"):
+            e = dict(entry)
+            if value == "drop":
+                del e[key]
+            else:
+                e[key] = None
+            variants.append(e)
+    for nested in ("frame", "simulated", "diff", "uncertainty"):
+        for k in entry[nested]:
+            variants.append(dict(entry, **{nested: dict(entry[nested], **{k: None})}))
+    variants.append(dict(entry, points=[{k: None for k in p} for p in entry["points"]]))
+    variants.append(dict(entry, points=[{} for _ in entry["points"]]))
+    variants.append(dict(entry, uncertainty={"std": None}))
+    variants.append({})
+    sm = dict(full["summary"])
+    sparse = {"groups": [{} for _ in range(5)], "correlation": None}
+    for e in variants:
+        render_report({"manifest": "m", "summary": sm, "entries": [e]})
+        render_report({"manifest": "m", "summary": sparse, "entries": [e]})
+    render_report({})
+
+    # EntryResult: the text table and the CSV, with any combination of parts missing
+    r0 = res.entries[0]
+    parts = {"solution": [r0.solution, None, NS(n_points=None, n_used=None, rms=None, max=None,
+                                                  mean=None, accepted=True, points=[],
+                                                  uncertainty=None, tcp=None)],
+             "delta": [r0.delta, None], "measured": [r0.measured, None],
+             "simulated": [r0.simulated, None], "error": [None, "boom"],
+             "patch_error": [None, "refused"], "patched": [None, "x.mod"]}
+    import itertools
+    for combo in itertools.product(*parts.values()):   # 3 * 2**6 results
+        r = B.EntryResult(entry=r0.entry, **dict(zip(parts, combo)))
+        result = B.BatchResult(manifest=res.manifest, entries=[r, r0],
+                               summary=B.summarize([r, r0]))
+        render(result)
+        B.csv_rows([r])
+        render_report(_clean(result.as_dict()))
+
+
+def test_refused_patch_is_shown(tmp_path, capsys):
+    """patch_frame refuses (the PERS is also declared in a sibling module):
+    the table, the summary lines, the exit line, the CSV and the report all
+    say so, and no "written" line claims a copy."""
+    _abb_cell(tmp_path, sibling=True)
+    (tmp_path / "m.toml").write_text(
+        _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
+        "frame = 'wobj1'\n")
+    out_dir = tmp_path / "patched"
+    code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir),
+                              "--csv", str(tmp_path / "o.csv"), "--report", str(tmp_path / "o.html")],
+                             capsys)
+    assert code == 1 and err == ""
+    assert not out_dir.exists() or not any(out_dir.rglob("*.mod"))
+    lines = out.splitlines()
+    for name in ("good ", "u "):
+        row = next(ln for ln in lines if ln.startswith(name))
+        assert " pass " in row and row.endswith("REFUSED")
+    assert "success rate 100.0 %" in out                       # they did pass; the patch did not
+    assert "patch errors (no patched copy written for these):" in out
+    assert "  good: " + str(tmp_path / "cell.mod") in out and "other.mod" in out
+    assert "  u: not written: the patch of entry 'good' in the same file was refused" in out
+    assert "patched 0   patch errors 2" in out
+    assert "written (patched copies)" not in out
+    assert f"no patched copy written under {out_dir}" in out
+    assert lines[-1] == "exit 1: 2 patched copies not written (patch errors above)"
+    rows = list(csv.DictReader((tmp_path / "o.csv").open()))
+    assert all(r["pass"] == "true" and r["patched"] == "" for r in rows)
+    assert "also declared" in rows[0]["patch_error"] and "'good'" in rows[1]["patch_error"]
+    html = (tmp_path / "o.html").read_text()
+    assert 'id="patch-errors"' in html and html.count("patched copy NOT written") == 2
+    assert 'data-key="patch_errors" data-value="2"' in html
+    assert html.count('data-patch-error="') == 2
+
+
+def test_written_patch_is_listed(tmp_path, capsys):
+    _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(_GOOD)
+    out_dir = tmp_path / "patched"
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir)], capsys)
+    assert code == 0
+    assert f"written (patched copies): 1 file under {out_dir}" in out
+    assert f"  {out_dir / 'cell.mod'}" in out and (out_dir / "cell.mod").is_file()
+    assert "patched 1   patch errors 0" in out and out.splitlines()[-1] == "exit 0: every entry passed (1)"
+
+
+def test_oframe_uncertainty_in_user_frame_axes(tmp_path, capsys):
+    """--uncertainty of an object frame is in the axes (and coordinates) of
+    its ``frame``, the user frame: U turns 90 deg about z, so x and y swap."""
+    from ucsio.solve import uncertainty
+
+    U, O_true = _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(
+        _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
+        "frame = 'wobj1'\n")
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json", "--uncertainty", "400"],
+                           capsys)
+    o, u = json.loads(out)["entries"]
+    assert o["pass"] and u["pass"]
+    assert o["uncertainty_axes"] == "uframe" and u["uncertainty_axes"] == "world"
+    for k in "xyz":                             # ci95 brackets the frame's own coordinates
+        lo, hi = o["uncertainty"]["ci95"][k]
+        assert lo < o["frame"][k] < hi, k
+        assert hi - lo < 1.0
+    # the same points in world: std x of the user-frame result is std y of the world one
+    import csv as _csv
+    rows = list(_csv.DictReader((tmp_path / "m.csv").open()))
+    laser = np.array([[float(r[f"laser_{a}"]) for a in "xyz"] for r in rows])
+    robot = np.array([[float(r[f"robot_{a}"]) for a in "xyz"] for r in rows])
+    w = uncertainty(laser, robot, n_samples=400)
+    an, aw = o["uncertainty"]["analytical_std"], w["analytical_std"]
+    assert an["x"] == pytest.approx(aw["y"], rel=1e-6)
+    assert an["y"] == pytest.approx(aw["x"], rel=1e-6)
+    assert an["z"] == pytest.approx(aw["z"], rel=1e-6)
+    assert an["angle"] == pytest.approx(aw["angle"], rel=1e-6)
+    assert abs(aw["x"] - aw["y"]) > 0.01 * aw["x"]     # the swap is visible
+    assert o["uncertainty"]["std"]["angle"] == pytest.approx(w["std"]["angle"], rel=0.15)
+
+
+@pytest.mark.parametrize("opt, value", [("--sigma-laser", "-0.01"), ("--sigma-robot", "nan"),
+                                        ("--sigma-robot", "inf")])
+def test_bad_sigma_fails_fast(tmp_path, capsys, opt, value):
+    """Checked before the run: even when no entry gets as far as the Monte Carlo."""
+    _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(_GOOD.replace("m.csv", "missing.csv"))
+    code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--uncertainty", "10",
+                              opt, value, "--report", str(tmp_path / "r.html")], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1 and opt in err
+    assert not (tmp_path / "r.html").exists()

@@ -183,3 +183,45 @@ def test_chromium_renders_report(report, tmp_path):
     keep = os.environ.get("UCSIO_KEEP_SCREENSHOT")
     if keep:
         shutil.copy(png, keep)
+
+
+def _one(entry: dict, **summary) -> dict:
+    sm = {"total": 1, "passed": 0, "rejected": 0, "errors": 1, "over_tolerance": 0,
+          "success_rate": 0.0, "correlation": {"x": None, "y": None, "z": None},
+          "groups": [{"group": g, "range": [0, None], "count": 0, "percent": 0.0, "mean_e": None,
+                      "std_e": None} for g in range(1, 6)]}
+    sm.update(summary)
+    return {"manifest": "m.toml", "summary": sm, "entries": [entry]}
+
+
+def test_entry_failed_after_it_was_solved():
+    """Refused at the diff (e.g. a KUKA BASE_TYPE #TCP base): e is null, but
+    the points, n_used and rms are there; the report shows both."""
+    from ucsio.report import render_report
+    entry = {"name": "R01", "status": "error", "accepted": False, "e": None, "dt_mean": None,
+             "group": None, "pass": False, "frame": None, "stage": "diff",
+             "error": "frame BASE_DATA[2]: BASE_TYPE #TCP: not a plain base",
+             "frame_name": "part_in_gripper", "controller": "$config.dat", "threshold": 1.5,
+             "min_points": 6, "tolerance": 100.0, "n_points": 8, "n_used": 7, "rms": 0.0612,
+             "mean": 0.05, "max": 0.1, "simulated": {"x": 1.0, "y": 2.0, "z": 3.0, "a": 0.0,
+                                                     "b": 0.0, "c": 0.0, "q": [1, 0, 0, 0]},
+             "points": [{"name": f"P{i}", "residual": 0.05, "loo_residual": None, "used": i != 0,
+                         "excluded_by": "auto" if i == 0 else None} for i in range(8)]}
+    html = render_report(_one(entry))
+    assert "BASE_TYPE #TCP" in html and "at the diff stage" in html
+    assert "n 7 of 8 used, e \u2013 mm, rms 0.061" in html
+    assert '<td class="n">7/8</td>' in html
+
+
+def test_uncertainty_axes_and_patch_error_in_report():
+    from ucsio.report import render_report
+    entry = {"name": "o", "status": "pass", "accepted": True, "e": 0.05, "dt_mean": 1.0,
+             "group": 1, "pass": True, "n_points": 6, "n_used": 6, "rms": 0.05, "max": 0.08,
+             "threshold": 1.5, "tolerance": 100.0, "points": [],
+             "uncertainty": {"std": {"x": 0.01, "y": 0.02, "z": 0.03, "angle": 0.001}},
+             "uncertainty_axes": "uframe", "patch_error": "wobj1: also declared in other.mod"}
+    html = render_report(_one(entry, passed=1, errors=0, success_rate=1.0, patched=0,
+                              patch_errors=1))
+    assert "uncertainty (std, user frame axes) x 0.0100" in html
+    assert 'id="patch-errors"' in html and "patched copy NOT written: wobj1: also declared" in html
+    assert 'data-key="patch_errors" data-value="1"' in html and "not patched</span>" in html

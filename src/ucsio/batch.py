@@ -4,8 +4,9 @@ batch, with a summary by group (../shared/SPEC.md, "Many robots at once").
 The flow, each step callable on its own:
 
 - ``read_manifest(path)``: the manifest, checked (``UcsioError``, exit 2, for
-  anything wrong with the manifest itself: bad TOML, unknown or mistyped keys,
-  a missing or duplicate name).
+  anything wrong with the manifest as a whole: bad TOML, a bad [defaults], no
+  entries, a missing or duplicate name; a bad key or value inside one
+  [[entry]] is that entry's ``problem``, reported as its error).
 - ``run_batch(manifest)``: per entry, read the measurement and the
   controller's simulated frame (each file parsed once, cached by path), solve
   every dataset (``solve_many``: the method of ``ucsio.solve``, batched: one
@@ -59,9 +60,9 @@ Progress = Callable[[str, int, int], None]
 class Entry:
     index: int                        # 0-based position in the manifest
     name: str
-    measurement: str                  # paths resolved against the manifest's folder
-    controller: str
-    frame: str
+    measurement: str | None           # paths resolved against the manifest's folder
+    controller: str | None            # (None only in an entry with a problem)
+    frame: str | None
     tcp: tuple[float, float, float] | None
     tool: str | None                  # "FILE:NAME", FILE resolved
     threshold: float = 1.5
@@ -69,6 +70,7 @@ class Entry:
     tolerance: float = DEFAULT_TOLERANCE
     exclude: tuple[str, ...] = ()
     no_exclusion: bool = False
+    problem: str | None = None        # why this entry cannot run (a bad value in its table)
 
 
 @dataclass
@@ -101,8 +103,94 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
     return table
 
 
+def _check_values(table: dict, where: str, path: str) -> None:
+    """The type and range of every value a table gives (UcsioError)."""
+    for k in REQUIRED:
+        if k in table and (not isinstance(table[k], str) or not table[k].strip()):
+            raise UcsioError(f"{where}: {k} must be a non-empty string, got {table[k]!r}",
+                             file=path)
+    if "tool" in table:
+        spec = table["tool"]
+        file, sep, tname = spec.rpartition(":") if isinstance(spec, str) else ("", "", "")
+        if not sep or not file or not tname:
+            raise UcsioError(f"{where}: tool must be \"FILE:NAME\", got {spec!r}", file=path)
+    if "tcp" in table:
+        v = table["tcp"]
+        if not isinstance(v, list) or len(v) != 3:
+            raise UcsioError(f"{where}: tcp must be a list of three numbers [x, y, z], got {v!r}",
+                             file=path)
+        for c in v:
+            _number(c, "tcp", where, path)
+    for k in ("threshold", "tolerance"):
+        if k in table:
+            _number(table[k], k, where, path, positive=True)
+    if "min_points" in table:
+        mp = table["min_points"]
+        if isinstance(mp, bool) or not isinstance(mp, int) or mp < 3:
+            raise UcsioError(f"{where}: min_points must be an integer >= 3, got {mp!r}", file=path)
+    if "exclude" in table:
+        ex = table["exclude"]
+        if isinstance(ex, str):
+            ex = [ex]
+        if not isinstance(ex, list) or not all(isinstance(x, str) for x in ex):
+            raise UcsioError(f"{where}: exclude must be a list of point names", file=path)
+    if "no_exclusion" in table and not isinstance(table["no_exclusion"], bool):
+        raise UcsioError(f"{where}: no_exclusion must be true or false", file=path)
+
+
+def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
+           path: str) -> Entry:
+    """One checked entry; UcsioError for anything wrong with it."""
+    _check_table(raw, label, ENTRY_KEYS, path)
+    merged = dict(defaults)
+    if "tcp" in raw or "tool" in raw:          # the entry's own TCP source wins
+        merged.pop("tcp", None)
+        merged.pop("tool", None)
+    merged.update(raw)
+    for k in REQUIRED:
+        if not isinstance(merged.get(k), str) or not merged[k].strip():
+            raise UcsioError(f"{label}: needs {k} (a string)", file=path)
+    _check_values(merged, label, path)
+    tcp = None
+    tool = None
+    if "tool" in merged:
+        file, _, tname = merged["tool"].rpartition(":")
+        tool = f"{_resolve(base, file)}:{tname}"
+    else:
+        tcp = tuple(float(c) for c in merged.get("tcp", [0.0, 0.0, 0.0]))
+    ex = merged.get("exclude", [])
+    if isinstance(ex, str):
+        ex = [ex]
+    return Entry(index=i, name=name, measurement=_resolve(base, merged["measurement"]),
+                 controller=_resolve(base, merged["controller"]), frame=merged["frame"],
+                 tcp=tcp, tool=tool, threshold=float(merged.get("threshold", 1.5)),
+                 min_points=merged.get("min_points", 6),
+                 tolerance=float(merged.get("tolerance", DEFAULT_TOLERANCE)),
+                 exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False))
+
+
+def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
+                  problem: str) -> Entry:
+    """An entry that cannot run: what can be told of it, and why."""
+    def path_of(k):
+        v = raw.get(k, defaults.get(k))
+        return _resolve(base, v) if isinstance(v, str) and v.strip() else None
+
+    frame = raw.get("frame", defaults.get("frame"))
+    return Entry(index=i, name=name, measurement=path_of("measurement"),
+                 controller=path_of("controller"),
+                 frame=frame if isinstance(frame, str) else None, tcp=None, tool=None,
+                 problem=problem)
+
+
 def read_manifest(path: str | os.PathLike) -> Manifest:
-    """Read and check a batch manifest; UcsioError (exit 2) when it is bad."""
+    """Read and check a batch manifest.
+
+    UcsioError (exit 2) for anything wrong with the manifest as a whole: not
+    readable, not TOML, unknown top-level keys, a bad [defaults], no entries,
+    an entry without a name or a duplicate name. A problem inside one named
+    [[entry]] (an unknown key, a missing frame, a mistyped value) only makes
+    that entry fail: its ``problem``, reported as its error by run_batch."""
     path = os.fspath(path)
     try:
         with open(path, "rb") as fh:
@@ -120,6 +208,7 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     if not isinstance(defaults, dict):
         raise UcsioError("[defaults] must be a table", file=path)
     _check_table(defaults, "[defaults]", DEFAULT_KEYS, path)
+    _check_values(defaults, "[defaults]", path)
     raw_entries = data.get("entry", [])
     if not isinstance(raw_entries, list) or not all(isinstance(e, dict) for e in raw_entries):
         raise UcsioError("entries must be [[entry]] tables", file=path)
@@ -129,14 +218,8 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     entries: list[Entry] = []
     seen: dict[str, int] = {}
     for i, raw in enumerate(raw_entries):
-        label = f"entry {i + 1}" + (f" ({raw['name']!r})" if isinstance(raw.get("name"), str) else "")
-        _check_table(raw, label, ENTRY_KEYS, path)
-        merged = dict(defaults)
-        if "tcp" in raw or "tool" in raw:          # the entry's own TCP source wins
-            merged.pop("tcp", None)
-            merged.pop("tool", None)
-        merged.update(raw)
-        name = merged.get("name")
+        name = raw.get("name")
+        label = f"entry {i + 1}" + (f" ({name!r})" if isinstance(name, str) else "")
         if not isinstance(name, str) or not name.strip():
             raise UcsioError(f"{label}: needs a name (a non-empty string)", file=path)
         key = name.strip().casefold()
@@ -144,41 +227,10 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
             raise UcsioError(f"duplicate entry name {name!r} (entries {seen[key] + 1} and {i + 1});"
                              " names must be unique", file=path)
         seen[key] = i
-        for k in REQUIRED:
-            if not isinstance(merged.get(k), str) or not merged[k].strip():
-                raise UcsioError(f"{label}: needs {k} (a string)", file=path)
-        tcp = None
-        tool = None
-        if "tool" in merged:
-            spec = merged["tool"]
-            file, sep, tname = spec.rpartition(":") if isinstance(spec, str) else ("", "", "")
-            if not sep or not file or not tname:
-                raise UcsioError(f"{label}: tool must be \"FILE:NAME\", got {spec!r}", file=path)
-            tool = f"{_resolve(base, file)}:{tname}"
-        else:
-            v = merged.get("tcp", [0.0, 0.0, 0.0])
-            if not isinstance(v, list) or len(v) != 3:
-                raise UcsioError(f"{label}: tcp must be a list of three numbers [x, y, z], got {v!r}",
-                                 file=path)
-            tcp = tuple(_number(c, "tcp", label, path) for c in v)
-        threshold = _number(merged.get("threshold", 1.5), "threshold", label, path, positive=True)
-        tolerance = _number(merged.get("tolerance", DEFAULT_TOLERANCE), "tolerance", label, path,
-                            positive=True)
-        mp = merged.get("min_points", 6)
-        if isinstance(mp, bool) or not isinstance(mp, int) or mp < 3:
-            raise UcsioError(f"{label}: min_points must be an integer >= 3, got {mp!r}", file=path)
-        ex = merged.get("exclude", [])
-        if isinstance(ex, str):
-            ex = [ex]
-        if not isinstance(ex, list) or not all(isinstance(x, str) for x in ex):
-            raise UcsioError(f"{label}: exclude must be a list of point names", file=path)
-        ne = merged.get("no_exclusion", False)
-        if not isinstance(ne, bool):
-            raise UcsioError(f"{label}: no_exclusion must be true or false", file=path)
-        entries.append(Entry(index=i, name=name, measurement=_resolve(base, merged["measurement"]),
-                             controller=_resolve(base, merged["controller"]), frame=merged["frame"],
-                             tcp=tcp, tool=tool, threshold=threshold, min_points=mp,
-                             tolerance=tolerance, exclude=tuple(ex), no_exclusion=ne))
+        try:
+            entries.append(_entry(i, name, raw, defaults, label, base, path))
+        except UcsioError as exc:
+            entries.append(_broken_entry(i, name, raw, defaults, base, str(exc)))
     return Manifest(path=path, entries=entries)
 
 
@@ -358,12 +410,14 @@ class EntryResult:
     measured: Pose | None = None      # in the frame's own parent (differs from the fit for oframe)
     delta: dict | None = None
     error: str | None = None
-    stage: str | None = None          # where it failed: manifest paths, controller, tool, measurement, solve
+    stage: str | None = None          # where it failed: manifest, controller, tool, measurement, solve, diff
     vendor: str | None = None
     frame_file: str | None = None
     frame_line: int | None = None
     patched: str | None = None        # the patched copy (--patch-dir)
     patch_error: str | None = None    # why no patched copy was written
+    uncertainty_axes: str | None = None   # "world", or "uframe" (an ABB object frame)
+    uncertainty_error: str | None = None  # why --uncertainty gave nothing for this entry
 
     @property
     def accepted(self) -> bool:
@@ -425,6 +479,9 @@ class EntryResult:
                                for p in s.points]
             if s.uncertainty is not None:
                 d["uncertainty"] = s.uncertainty
+                d["uncertainty_axes"] = self.uncertainty_axes or "world"
+        if self.uncertainty_error is not None:
+            d["uncertainty_error"] = self.uncertainty_error
         if self.patched is not None:
             d["patched"] = self.patched
         if self.patch_error is not None:
@@ -510,6 +567,35 @@ def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
     return measured_in_parent(cf, frame, fit)
 
 
+def _entry_uncertainty(r: EntryResult, cf, frame, n: int, sigma_laser: float,
+                       sigma_robot: float, seed: int) -> None:
+    """The Monte Carlo uncertainty of an accepted entry, in the axes of its
+    ``frame``: robot world, or for an ABB object frame its user frame. There
+    the robot points are expressed in the user frame (uframe^-1, the map
+    measured_in_parent applies to the fit) before the perturbed fits, so
+    every sample pose, and with them std and ci95, are in the same
+    coordinates as the frame; the noise is isotropic, so its model is the
+    same in either axes, and the angle (a magnitude) does not change."""
+    from .patch import measured_in_parent
+    from .solve import solution_uncertainty, uncertainty
+
+    sol = r.solution
+    meas = r._meas                                  # type: ignore[attr-defined]
+    ident = Pose.from_quat(0.0, 0.0, 0.0, (1.0, 0.0, 0.0, 0.0))
+    to_parent = measured_in_parent(cf, frame, ident)
+    if to_parent is ident:                          # the frame is in robot world
+        solution_uncertainty(meas, sol, n, sigma_laser, sigma_robot, seed)
+        r.uncertainty_axes = "world"
+        return
+    used = np.array([p.used for p in sol.points])
+    robot = meas.robot_points(sol.tcp)[used]
+    R = np.array(to_parent.matrix, dtype=float)
+    robot = robot @ R.T + np.array(to_parent.t, dtype=float)
+    sol.uncertainty = uncertainty(meas.laser[used], robot, (0.0, 0.0, 0.0),
+                                  meas.weights[used], n, sigma_laser, sigma_robot, seed)
+    r.uncertainty_axes = "uframe"
+
+
 def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 0.015,
               sigma_robot: float = 0.05, seed: int = 0, patch_dir: str | None = None,
               progress: Progress | None = None) -> BatchResult:
@@ -525,6 +611,11 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
     total = len(results)
     for k, r in enumerate(results):
         en = r.entry
+        if en.problem is not None:          # a bad value in its [[entry]] table
+            r.error, r.stage = en.problem, "manifest"
+            if progress:
+                progress("read", k + 1, total)
+            continue
         stage = "controller"
         try:
             cf = cache.controller(en.controller)
@@ -577,11 +668,13 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
     t3 = time.perf_counter()
 
     if uncertainty:
-        from .solve import solution_uncertainty
-        todo = [r for r in results if r.accepted]
-        for j, r in enumerate(todo):
-            solution_uncertainty(r._meas, r.solution, uncertainty, sigma_laser,  # type: ignore[attr-defined]
-                                 sigma_robot, seed)
+        todo = [k for k, r in enumerate(results) if r.accepted]
+        for j, k in enumerate(todo):
+            r = results[k]
+            try:
+                _entry_uncertainty(r, *frames[k], uncertainty, sigma_laser, sigma_robot, seed)
+            except UcsioError as exc:
+                r.uncertainty_error = str(exc)
             if progress:
                 progress("uncertainty", j + 1, len(todo))
     t4 = time.perf_counter()
@@ -609,7 +702,8 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
     file with several passing entries gets all of them in one copy. Each
     frame goes through ``ucsio.patch.patch_frame`` (its refusals and
     read-back check); a refusal is the entry's ``patch_error``, and that
-    file's copy is not written."""
+    file's copy is not written (the file's other entries get a
+    ``patch_error`` naming the refused one)."""
     from . import patch as patcher
 
     by_file: dict[str, list[tuple[int, EntryResult]]] = {}
@@ -626,6 +720,7 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             rel = Path(Path(path).name)
         target = out_root / rel
         problem = None
+        culprit = None          # the entry whose frame was refused, if one was
         planned = []
         seen: dict[int, str] = {}
         for k, r in items:
@@ -638,7 +733,7 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             try:
                 planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose))
             except UcsioError as exc:
-                problem = f"{r.entry.name}: {exc}"
+                problem, culprit = str(exc), r.entry.name
                 break
         try:
             if problem is None:
@@ -657,8 +752,11 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
         for _, r in items:
             if problem is None:
                 r.patched = str(target)
-            else:
+            elif culprit is None or r.entry.name == culprit:
                 r.patch_error = problem
+            else:       # one copy per file: another entry's refusal stops this one too
+                r.patch_error = (f"not written: the patch of entry {culprit!r} in the same file "
+                                 f"was refused ({problem})")
 
 
 def _verify_combined(cf, new: bytes, planned) -> None:
@@ -692,7 +790,13 @@ def _pearson(a: Sequence[float], b: Sequence[float]) -> float | None:
     return float(dx @ dy) / den
 
 
+def _finite(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
 def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
+    """The summary; a missing number (an e, a pose) is left out of the
+    statistics it would feed, never an error."""
     total = len(results)
     passed = sum(r.passed for r in results)
     errors = sum(r.error is not None for r in results)
@@ -701,22 +805,24 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
     accepted = [r for r in results if r.accepted and r.delta is not None]
     groups = []
     for g in range(1, N_GROUPS + 1):
-        es = [r.e for r in accepted if r.group == g]
-        count = len(es)
+        in_g = [r for r in accepted if r.group == g]
+        count = len(in_g)
+        es = [r.e for r in in_g if _finite(r.e)]
         groups.append({
             "group": g,
             "range": [0.0 if g == 1 else GROUP_BOUNDS[g - 2],
                       GROUP_BOUNDS[g - 1] if g <= len(GROUP_BOUNDS) else None],
             "count": count,
             "percent": 100.0 * count / total if total else 0.0,
-            "mean_e": float(np.mean(es)) if count else None,
-            "std_e": float(np.std(es, ddof=1)) if count >= 2 else None,
+            "mean_e": float(np.mean(es)) if es else None,
+            "std_e": float(np.std(es, ddof=1)) if len(es) >= 2 else None,
             "passed": sum(r.passed for r in accepted if r.group == g),
         })
-    passing = [r for r in results if r.passed]
+    passing = [r for r in results if r.passed and r.simulated is not None
+               and r.measured is not None]
     corr = {axis: _pearson([getattr(r.simulated, axis) for r in passing],
                            [getattr(r.measured, axis) for r in passing]) for axis in "xyz"}
-    es_all = [r.e for r in accepted]
+    es_all = [r.e for r in accepted if _finite(r.e)]
     return {
         "total": total, "passed": passed, "rejected": rejected, "errors": errors,
         "over_tolerance": len(accepted) - passed, "accepted": len(accepted),
@@ -736,7 +842,7 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
 CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "dx", "dy", "dz",
                "da", "db", "dc", "angle", "dist", "x", "y", "z", "a", "b", "c",
                "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "tolerance",
-               "measurement", "controller", "frame", "error")
+               "measurement", "controller", "frame", "error", "patched", "patch_error")
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -744,18 +850,19 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
     for r in results:
         d = r.delta or {}
         m = r.measured
-        s = r.solution if r.error is None else None
+        s = r.solution
         row = {"name": r.entry.name, "status": r.status, "accepted": r.accepted,
                "pass": r.passed, "e": r.e, "dt_mean": r.dt_mean, "group": r.group,
                "tolerance": r.entry.tolerance, "measurement": r.entry.measurement,
-               "controller": r.entry.controller, "frame": r.entry.frame, "error": r.error or ""}
+               "controller": r.entry.controller, "frame": r.entry.frame, "error": r.error or "",
+               "patched": r.patched, "patch_error": r.patch_error or ""}
         for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist"):
             row[k] = d.get(k)
         if m is not None:
             row.update(zip(("x", "y", "z", "a", "b", "c"), (m.x, m.y, m.z, *m.abc)))
             row.update(zip(("q1", "q2", "q3", "q4"), m.q))
-        if s is not None:
-            row.update({"n_points": s.n_points, "n_used": s.n_used, "rms": s.rms, "max": s.max})
+        if s is not None:   # solved (also when it failed afterwards, at the diff)
+            row.update({k: getattr(s, k, None) for k in ("n_points", "n_used", "rms", "max")})
         rows.append([row.get(c) for c in CSV_COLUMNS])
     return rows
 

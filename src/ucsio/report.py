@@ -10,7 +10,12 @@ matplotlib, no scripts, nothing fetched from the network). It holds:
 - per-entry residual bars (mean residual e, and the largest residual of the
   used points, against the outlier threshold);
 - per entry: the diff, the measured frame, the points with their residuals
-  and leave-one-out residuals, or the error.
+  and leave-one-out residuals, the error, and with --patch-dir the patched
+  copy or why it was refused.
+
+Any value may be missing or null (an entry that failed after it was solved
+has points and residuals but no e; a hand-edited JSON may lack anything): a
+missing number is drawn as "–", never an error.
 
 Numbers for machines: the whole ``--json`` document is embedded as
 ``<script type="application/json" id="ucsio-data">``; the summary cells carry
@@ -72,7 +77,22 @@ def _e(s: Any) -> str:
 
 
 def _f(v: Any, digits: int = 3) -> str:
-    return fmt(v, digits, none="\u2013")
+    return fmt(_num(v), digits, none="\u2013")
+
+
+def _num(v: Any) -> Any:
+    """A finite number (ints, floats, bools kept), else None."""
+    if isinstance(v, bool) or isinstance(v, int):
+        return v
+    if isinstance(v, float):
+        return v if math.isfinite(v) else None
+    return None
+
+
+def _g(v: Any) -> str:
+    """A number in its shortest form ("–" when missing)."""
+    v = _num(v)
+    return "\u2013" if v is None or isinstance(v, bool) else f"{v:g}"
 
 
 def _attr(v: Any) -> str:
@@ -168,8 +188,9 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
     in front of the largest used residual (light)."""
     W, H, left, right, top_pad, bottom = 1100, 240, 50, 20, 16, 40
     n = max(len(rows), 1)
-    vals = [r["max"] for r in rows if r.get("max") is not None] + \
-           [r["e"] for r in rows if r.get("e") is not None]
+    rows = [dict(r, e=_num(r.get("e")), max=_num(r.get("max"))) for r in rows]
+    vals = [r["max"] for r in rows if r["max"] is not None] + \
+           [r["e"] for r in rows if r["e"] is not None]
     ymax = max(vals + [0.1])
     if threshold is not None and threshold < 1.5 * ymax:
         ymax = max(ymax, threshold * 1.05)
@@ -192,14 +213,14 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
     bw = pw / n
     for i, r in enumerate(rows):
         x = left + i * bw
-        color = "#c62828" if r["status"] == "rejected" else "#1f6feb"
+        color = "#c62828" if r.get("status") == "rejected" else "#1f6feb"
         if r.get("max") is not None:
             out.append(f'<rect x="{x + bw * 0.1:.2f}" y="{Y(r["max"]):.1f}" width="{bw * 0.8:.2f}" '
                        f'height="{Y(0) - Y(r["max"]):.1f}" fill="{color}" opacity="0.25"/>')
         if r.get("e") is not None:
-            out.append(f'<rect class="ebar" data-name="{_e(r["name"])}" data-e="{_attr(r["e"])}" '
+            out.append(f'<rect class="ebar" data-name="{_e(r.get("name"))}" data-e="{_attr(r["e"])}" '
                        f'x="{x + bw * 0.1:.2f}" y="{Y(r["e"]):.1f}" width="{bw * 0.8:.2f}" '
-                       f'height="{Y(0) - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r["name"])}: '
+                       f'height="{Y(0) - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r.get("name"))}: '
                        f'e {r["e"]:.3f} mm, max {_f(r.get("max"))} mm</title></rect>')
     if threshold is not None and threshold <= ymax:
         y = Y(threshold)
@@ -227,9 +248,11 @@ def _nice_step(raw: float) -> float:
 def points_svg(points: Sequence[dict], threshold: float) -> str:
     """Small chart of one entry's points: residual (solid), leave-one-out
     residual (outline), threshold line; excluded points red."""
+    points = [dict(p, residual=_num(p.get("residual")), loo_residual=_num(p.get("loo_residual")))
+              for p in points if isinstance(p, dict)]
     W, H, left, bottom, top_pad = 40 + 34 * max(len(points), 1), 150, 36, 28, 10
-    vals = [p["residual"] for p in points] + [p["loo_residual"] for p in points
-                                               if p.get("loo_residual") is not None]
+    vals = [p["residual"] for p in points if p["residual"] is not None] + \
+           [p["loo_residual"] for p in points if p["loo_residual"] is not None]
     ymax = max(vals + [threshold * 1.15])
     cap = max(threshold * 4, 0.1)
     clipped = ymax > cap
@@ -247,17 +270,18 @@ def points_svg(points: Sequence[dict], threshold: float) -> str:
            f'{ymax:.2g}</text>']
     for i, p in enumerate(points):
         x = left + 6 + i * 34
-        color = "#1f6feb" if p["used"] else "#c62828"
-        out.append(f'<rect x="{x}" y="{Y(p["residual"]):.1f}" width="11" '
-                   f'height="{Y(0) - Y(p["residual"]):.1f}" fill="{color}"/>')
-        if p.get("loo_residual") is not None:
+        color = "#1f6feb" if p.get("used", True) else "#c62828"
+        if p["residual"] is not None:
+            out.append(f'<rect x="{x}" y="{Y(p["residual"]):.1f}" width="11" '
+                       f'height="{Y(0) - Y(p["residual"]):.1f}" fill="{color}"/>')
+        if p["loo_residual"] is not None:
             out.append(f'<rect x="{x + 13}" y="{Y(p["loo_residual"]):.1f}" width="11" '
                        f'height="{Y(0) - Y(p["loo_residual"]):.1f}" fill="none" stroke="{color}"/>')
-        if clipped and max(p["residual"], p.get("loo_residual") or 0) > ymax:
+        if clipped and max(p["residual"] or 0, p["loo_residual"] or 0) > ymax:
             out.append(f'<text x="{x + 12}" y="{top_pad + 8}" text-anchor="middle" font-size="10" '
                        f'fill="{color}">▲</text>')
         out.append(f'<text x="{x + 12}" y="{H - 12}" text-anchor="middle" font-size="10">'
-                   f'{_e(p["name"][:6])}</text>')
+                   f'{_e(str(p.get("name") or "")[:6])}</text>')
     y = Y(threshold)
     out.append(f'<line x1="{left}" x2="{W - 4}" y1="{y:.1f}" y2="{y:.1f}" stroke="#c62828" '
                f'stroke-dasharray="4 3"/>')
@@ -267,10 +291,15 @@ def points_svg(points: Sequence[dict], threshold: float) -> str:
 
 # ---------------------------------------------------------------- the page
 
+def _pct(v: Any) -> str:
+    v = _num(v)
+    return "\u2013" if v is None else f"{100 * v:.1f} %"
+
+
 def render_report(data: dict, title: str = "ucsio batch report") -> str:
     """The report from the ``--json`` document of ``ucsio batch``."""
-    sm = data["summary"]
-    entries = data["entries"]
+    sm = data.get("summary") or {}
+    entries = [e for e in (data.get("entries") or []) if isinstance(e, dict)]
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              '<meta name="viewport" content="width=device-width, initial-scale=1">',
              f"<title>{_e(title)}</title>",
@@ -281,33 +310,51 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
              f"<h1>{_e(title)}</h1>",
              f'<div class="sub">manifest <code>{_e(data.get("manifest"))}</code></div>']
 
-    cards = [("total", sm["total"], "", "total"), ("passed", sm["passed"], "ok", "passed"),
-             ("over tolerance", sm.get("over_tolerance"), "warn", "over_tolerance"),
-             ("rejected", sm["rejected"], "bad", "rejected"), ("errors", sm["errors"], "err", "errors"),
-             ("success rate", f"{100 * sm['success_rate']:.1f} %", "ok", "success_rate")]
+    cards = [("total", _f(sm.get("total")), "", "total"),
+             ("passed", _f(sm.get("passed")), "ok", "passed"),
+             ("over tolerance", _f(sm.get("over_tolerance")), "warn", "over_tolerance"),
+             ("rejected", _f(sm.get("rejected")), "bad", "rejected"),
+             ("errors", _f(sm.get("errors")), "err", "errors"),
+             ("success rate", _pct(sm.get("success_rate")), "ok", "success_rate")]
+    patching = bool(sm.get("patched") or sm.get("patch_errors")) or any(
+        "patched" in e or "patch_error" in e for e in entries)
+    if patching:
+        cards += [("patched copies", _f(sm.get("patched")), "ok", "patched"),
+                  ("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors")]
     parts.append('<div class="cards" id="summary">')
     for label, value, cls, key in cards:
         raw = sm.get(key)
         parts.append(f'<div class="card {cls}" data-key="{key}" data-value="{_attr(raw)}">'
                      f'<div class="v">{_e(value)}</div><div class="k">{_e(label)}</div></div>')
     parts.append("</div>")
+    refused = [e for e in entries if e.get("patch_error")]
+    if refused:
+        parts.append('<div class="err-msg" id="patch-errors" style="margin-top:10px">'
+                     f'{len(refused)} patched cop{"y" if len(refused) == 1 else "ies"} not written '
+                     '(a refused patch fails the run, exit 1):<ul>'
+                     + "".join(f'<li><b>{_e(e.get("name"))}</b>: {_e(e["patch_error"])}</li>'
+                               for e in refused) + "</ul></div>")
 
     parts.append("<h2>Groups</h2>")
     parts.append('<table id="groups"><tr><th>group</th><th>dt_mean (mm)</th><th class="n">count</th>'
                  '<th class="n">% of total</th><th class="n">mean e (mm)</th>'
                  '<th class="n">std e (mm)</th></tr>')
-    for g in sm["groups"]:
-        lo, hi = g["range"]
-        span = f"{lo:g} – {hi:g}" if hi is not None else f"≥ {lo:g}"
+    for k, g in enumerate(sm.get("groups") or [], 1):
+        gno = g.get("group") if isinstance(g.get("group"), int) else k
+        rng = g.get("range") or [None, None]
+        lo, hi = (list(rng) + [None, None])[:2]
+        span = (f"{_g(lo)} – {_g(hi)}" if _num(hi) is not None else f"≥ {_g(lo)}")
+        color = GROUP_COLORS[(gno - 1) % len(GROUP_COLORS)]
         parts.append(
-            f'<tr class="group" data-group="{g["group"]}" data-count="{g["count"]}" '
-            f'data-percent="{_attr(g["percent"])}" data-mean-e="{_attr(g["mean_e"])}" '
-            f'data-std-e="{_attr(g["std_e"])}"><td><span class="swatch" '
-            f'style="background:{GROUP_COLORS[g["group"] - 1]}"></span>{g["group"]}</td>'
-            f'<td>{span}</td><td class="n">{g["count"]}</td><td class="n">{g["percent"]:.1f}</td>'
-            f'<td class="n">{_f(g["mean_e"])}</td><td class="n">{_f(g["std_e"])}</td></tr>')
+            f'<tr class="group" data-group="{_attr(gno)}" data-count="{_attr(g.get("count"))}" '
+            f'data-percent="{_attr(g.get("percent"))}" data-mean-e="{_attr(g.get("mean_e"))}" '
+            f'data-std-e="{_attr(g.get("std_e"))}"><td><span class="swatch" '
+            f'style="background:{color}"></span>{_e(gno)}</td>'
+            f'<td>{span}</td><td class="n">{_f(g.get("count"))}</td>'
+            f'<td class="n">{_f(g.get("percent"), 1)}</td>'
+            f'<td class="n">{_f(g.get("mean_e"))}</td><td class="n">{_f(g.get("std_e"))}</td></tr>')
     parts.append("</table>")
-    c = sm.get("correlation", {})
+    c = sm.get("correlation") or {}
     parts.append('<p class="note" id="correlation" '
                  + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
                  + ">Pearson correlation of simulated vs measured position over passing entries: "
@@ -315,17 +362,18 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
                  + ". Counts by group are over accepted entries; std e is the sample standard "
                    "deviation (n − 1), blank below two entries.</p>")
 
-    tolerances = {e.get("tolerance") for e in entries if e.get("tolerance") is not None}
+    tolerances = {_num(e.get("tolerance")) for e in entries} - {None}
     tol = tolerances.pop() if len(tolerances) == 1 else None
-    dts = [(e["dt_mean"], e["group"]) for e in entries if e.get("dt_mean") is not None]
+    dts = [(_num(e.get("dt_mean")), e.get("group")) for e in entries
+           if _num(e.get("dt_mean")) is not None]
     parts.append("<h2>dt_mean of the accepted entries</h2>")
     parts.append(f'<div class="chart" id="histogram">{histogram_svg(dts, tolerance=tol)}</div>')
     parts.append('<p class="note">Dashed lines: group boundaries at '
                  + ", ".join(f"{b:g}" for b in GROUP_BOUNDS) + " mm. A frame passes below its "
                  "tolerance" + (f" ({tol:g} mm)." if tol is not None else " (per entry).") + "</p>")
 
-    solved = [e for e in entries if e.get("e") is not None]
-    thresholds = {e.get("threshold") for e in solved}
+    solved = [e for e in entries if _num(e.get("e")) is not None]
+    thresholds = {_num(e.get("threshold")) for e in solved}
     thr = thresholds.pop() if len(thresholds) == 1 else None
     parts.append("<h2>Residuals per entry</h2>")
     parts.append(f'<div class="chart" id="residuals">{residual_bars_svg(solved, thr)}</div>')
@@ -335,16 +383,18 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
                  '<th class="n">e</th><th class="n">dt_mean</th><th class="n">group</th>'
                  '<th class="n">dx</th><th class="n">dy</th><th class="n">dz</th>'
                  '<th class="n">angle°</th></tr>')
-    for e in entries:
+    for i, e in enumerate(entries):
         d = e.get("diff") or {}
-        used = f'{e["n_used"]}/{e["n_points"]}' if e.get("n_points") is not None else "–"
-        cls = STATUS_CLASS.get(e["status"], "err")
+        status = e.get("status")
+        cls = STATUS_CLASS.get(status, "err")
         parts.append(
-            f'<tr class="entry" data-name="{_e(e["name"])}" data-status="{_e(e["status"])}" '
-            f'data-e="{_attr(e.get("e"))}" data-dt-mean="{_attr(e.get("dt_mean"))}" '
-            f'data-group="{_attr(e.get("group"))}" data-pass="{_attr(e.get("pass"))}">'
-            f'<td><a href="#e{entries.index(e)}">{_e(e["name"])}</a></td>'
-            f'<td><span class="pill {cls}">{_e(e["status"])}</span></td><td class="n">{used}</td>'
+            f'<tr class="entry" data-name="{_e(e.get("name"))}" data-status="{_e(status)}" '
+            f'data-e="{_attr(_num(e.get("e")))}" data-dt-mean="{_attr(_num(e.get("dt_mean")))}" '
+            f'data-group="{_attr(_num(e.get("group")))}" data-pass="{_attr(e.get("pass"))}"'
+            + (f' data-patch-error="{_e(e["patch_error"])}"' if e.get("patch_error") else "")
+            + f'><td><a href="#e{i}">{_e(e.get("name"))}</a></td>'
+            f'<td><span class="pill {cls}">{_e(status)}</span>{_patch_pill(e)}</td>'
+            f'<td class="n">{_used(e)}</td>'
             f'<td class="n">{_f(e.get("e"))}</td><td class="n">{_f(e.get("dt_mean"))}</td>'
             f'<td class="n">{_f(e.get("group"))}</td><td class="n">{_f(d.get("dx"))}</td>'
             f'<td class="n">{_f(d.get("dy"))}</td><td class="n">{_f(d.get("dz"))}</td>'
@@ -361,60 +411,90 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
     return "\n".join(parts) + "\n"
 
 
-def _pose_rows(label: str, p: dict | None) -> str:
-    if not p:
+def _used(e: dict) -> str:
+    n_used, n_points = _num(e.get("n_used")), _num(e.get("n_points"))
+    if n_points is None:
+        return "\u2013"
+    return f"{_f(n_used)}/{_f(n_points)}"
+
+
+def _patch_pill(e: dict) -> str:
+    if e.get("patch_error"):
+        return ' <span class="pill err" title="patched copy not written">not patched</span>'
+    if e.get("patched"):
+        return ' <span class="pill ok">patched</span>'
+    return ""
+
+
+def _pose_rows(label: str, p: Any) -> str:
+    if not isinstance(p, dict) or not p:
         return ""
-    q = ", ".join(f"{v:.6f}" for v in p["q"])
-    return (f"<tr><th>{label}</th><td class='n'>{p['x']:.3f}</td><td class='n'>{p['y']:.3f}</td>"
-            f"<td class='n'>{p['z']:.3f}</td><td class='n'>{p['a']:.4f}</td>"
-            f"<td class='n'>{p['b']:.4f}</td><td class='n'>{p['c']:.4f}</td>"
-            f"<td class='mono'>[{q}]</td></tr>")
+    q = p.get("q")
+    qs = ("[" + ", ".join(_f(v, 6) for v in q) + "]") if isinstance(q, (list, tuple)) else "\u2013"
+    return (f"<tr><th>{label}</th><td class='n'>{_f(p.get('x'))}</td>"
+            f"<td class='n'>{_f(p.get('y'))}</td><td class='n'>{_f(p.get('z'))}</td>"
+            f"<td class='n'>{_f(p.get('a'), 4)}</td><td class='n'>{_f(p.get('b'), 4)}</td>"
+            f"<td class='n'>{_f(p.get('c'), 4)}</td><td class='mono'>{qs}</td></tr>")
 
 
 def _detail(i: int, e: dict) -> str:
-    cls = STATUS_CLASS.get(e["status"], "err")
-    head = (f'<details id="e{i}"{" open" if e["status"] in ("error", "rejected") else ""}>'
-            f'<summary><b>{_e(e["name"])}</b> <span class="pill {cls}">{_e(e["status"])}</span> '
-            f'<span class="mono">{_e(e.get("frame_name"))}</span> in '
-            f'<span class="mono">{_e(os.path.basename(e.get("controller") or ""))}</span></summary>'
-            '<div class="body">')
+    status = e.get("status")
+    cls = STATUS_CLASS.get(status, "err")
+    is_open = status in ("error", "rejected") or bool(e.get("patch_error"))
+    head = (f'<details id="e{i}"{" open" if is_open else ""}>'
+            f'<summary><b>{_e(e.get("name"))}</b> <span class="pill {cls}">{_e(status)}</span>'
+            f'{_patch_pill(e)} <span class="mono">{_e(e.get("frame_name"))}</span> in '
+            f'<span class="mono">{_e(os.path.basename(str(e.get("controller") or "")))}</span>'
+            '</summary><div class="body">')
     body = []
     if e.get("error"):
-        body.append(f'<div class="err-msg">{_e(e["error"])}</div>')
+        stage = f' (at the {_e(e["stage"])} stage)' if e.get("stage") else ""
+        body.append(f'<div class="err-msg" style="flex-basis:100%">{_e(e["error"])}{stage}</div>')
+    if e.get("patch_error"):
+        body.append('<div class="err-msg patch-error" style="flex-basis:100%">patched copy NOT '
+                    f'written: {_e(e["patch_error"])}</div>')
     if e.get("simulated") or e.get("frame"):
         rows = _pose_rows("simulated", e.get("simulated")) + _pose_rows(
-            "measured" if e["accepted"] else "fit (rejected)", e.get("frame"))
+            "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"))
         d = e.get("diff")
-        if d:
-            rows += (f"<tr><th>Δ</th><td class='n'>{d['dx']:.3f}</td><td class='n'>{d['dy']:.3f}</td>"
-                     f"<td class='n'>{d['dz']:.3f}</td><td class='n'>{d['da']:.4f}</td>"
-                     f"<td class='n'>{d['db']:.4f}</td><td class='n'>{d['dc']:.4f}</td>"
-                     f"<td>angle {d['angle']:.4f}°, dist {d['dist']:.3f} mm, dt_mean "
-                     f"{d['dt_mean']:.3f} mm, group {d['group']}</td></tr>")
+        if isinstance(d, dict) and d:
+            rows += (f"<tr><th>Δ</th><td class='n'>{_f(d.get('dx'))}</td>"
+                     f"<td class='n'>{_f(d.get('dy'))}</td><td class='n'>{_f(d.get('dz'))}</td>"
+                     f"<td class='n'>{_f(d.get('da'), 4)}</td><td class='n'>{_f(d.get('db'), 4)}</td>"
+                     f"<td class='n'>{_f(d.get('dc'), 4)}</td>"
+                     f"<td>angle {_f(d.get('angle'), 4)}°, dist {_f(d.get('dist'))} mm, dt_mean "
+                     f"{_f(d.get('dt_mean'))} mm, group {_f(d.get('group'))}</td></tr>")
         body.append("<table><tr><th></th><th class='n'>x</th><th class='n'>y</th><th class='n'>z</th>"
                     "<th class='n'>a</th><th class='n'>b</th><th class='n'>c</th><th>q</th></tr>"
                     + rows + "</table>")
-    pts = e.get("points")
+    pts = [p for p in (e.get("points") or []) if isinstance(p, dict)]
     if pts:
         prow = "".join(
-            f"<tr><td>{_e(p['name'])}</td><td class='n'>{p['residual']:.3f}</td>"
+            f"<tr><td>{_e(p.get('name'))}</td><td class='n'>{_f(p.get('residual'))}</td>"
             f"<td class='n'>{_f(p.get('loo_residual'))}</td>"
-            f"<td>{'yes' if p['used'] else 'no (' + _e(p.get('excluded_by')) + ')'}</td></tr>"
+            f"<td>{'yes' if p.get('used', True) else 'no (' + _e(p.get('excluded_by')) + ')'}</td></tr>"
             for p in pts)
         body.append("<table><tr><th>point</th><th class='n'>residual</th>"
                     "<th class='n'>leave-one-out</th><th>used</th></tr>" + prow + "</table>")
-        body.append(points_svg(pts, e.get("threshold") or 1.5))
-        info = (f"n {e['n_used']} of {e['n_points']} used, e {e['e']:.3f} mm, rms {e['rms']:.3f}, "
-                f"max {e['max']:.3f} mm (threshold {e.get('threshold'):g}, min points "
-                f"{e.get('min_points')}, tolerance {e.get('tolerance'):g} mm)")
+        body.append(points_svg(pts, _num(e.get("threshold")) or 1.5))
+    if pts or e.get("n_points") is not None:
+        info = (f"n {_f(e.get('n_used'))} of {_f(e.get('n_points'))} used, e {_f(e.get('e'))} mm, "
+                f"rms {_f(e.get('rms'))}, max {_f(e.get('max'))} mm (threshold "
+                f"{_g(e.get('threshold'))}, min points {_f(e.get('min_points'))}, tolerance "
+                f"{_g(e.get('tolerance'))} mm)")
         u = e.get("uncertainty")
-        if u:
-            info += "; uncertainty (std) " + ", ".join(
-                f"{k} {u['std'][k]:.4f}" for k in ("x", "y", "z", "angle"))
+        if isinstance(u, dict) and u:
+            std = u.get("std") if isinstance(u.get("std"), dict) else {}
+            axes = e.get("uncertainty_axes") or "world"
+            info += (f"; uncertainty (std, {'user frame' if axes == 'uframe' else axes} axes) "
+                     + ", ".join(f"{k} {_f(std.get(k), 4)}" for k in ("x", "y", "z", "angle")))
+        if e.get("uncertainty_error"):
+            info += f"; uncertainty not computed: {e['uncertainty_error']}"
         body.append(f'<p class="note" style="flex-basis:100%">{_e(info)}</p>')
-        if e["status"] == "rejected":
-            body.append(f'<div class="err-msg" style="flex-basis:100%">REJECTED: only {e["n_used"]} '
-                        f'points left, at least {e.get("min_points")} needed; measure again</div>')
+        if status == "rejected":
+            body.append(f'<div class="err-msg" style="flex-basis:100%">REJECTED: only '
+                        f'{_f(e.get("n_used"))} points left, at least {_f(e.get("min_points"))} '
+                        'needed; measure again</div>')
     src = f"measurement {e.get('measurement')}; controller {e.get('controller')}"
     if e.get("patched"):
         src += f"; patched copy {e['patched']}"

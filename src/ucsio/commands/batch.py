@@ -1,8 +1,9 @@
 """Solve and diff many datasets from a TOML manifest ([defaults] and
 [[entry]] tables, paths relative to the manifest), with a summary by group.
 One entry's failure is reported and counted, never stops the run. Exit 0 when
-every entry passed, 1 when any was over tolerance, rejected or failed, 2 for a
-bad manifest."""
+every entry passed (and, with --patch-dir, every patched copy was written), 1
+when any was over tolerance, rejected or failed or a patched copy was refused
+(the last line says which), 2 for a bad manifest or bad options."""
 from __future__ import annotations
 
 import argparse
@@ -59,16 +60,18 @@ def _check_output(path: str | None, option: str) -> None:
 def run(args) -> int:
     from ..batch import read_manifest, run_batch, write_csv
     from ..output import emit_json
+    from ..solve import check_sigmas
 
     if args.uncertainty and args.uncertainty < 2:
         raise UcsioError("--uncertainty needs N >= 2 samples")
+    check_sigmas(args.sigma_laser, args.sigma_robot)  # before anything runs: fail at once
     _check_output(args.csv, "--csv")
     _check_output(args.report, "--report")
     manifest = read_manifest(args.manifest)
     if args.patch_dir is not None:
         pd = os.path.abspath(args.patch_dir)
         for e in manifest.entries:
-            if os.path.dirname(os.path.abspath(e.controller)) == pd:
+            if e.controller is not None and os.path.dirname(os.path.abspath(e.controller)) == pd:
                 raise UcsioError(f"--patch-dir {args.patch_dir} holds the original controller "
                                  f"file {e.controller}; choose another folder")
 
@@ -96,47 +99,107 @@ def run(args) -> int:
     if args.json:
         emit_json(result.as_dict())
     else:
-        print(render(result), end="")
-        for opt, path in (("csv", args.csv), ("report", args.report), ("patched copies", args.patch_dir)):
+        print(render(result, patching=args.patch_dir is not None), end="")
+        for opt, path in (("csv", args.csv), ("report", args.report)):
             if path:
                 print(f"written ({opt}): {path}")
+        if args.patch_dir is not None:
+            copies = sorted({r.patched for r in result.entries if r.patched is not None})
+            if copies:
+                print(f"written (patched copies): {len(copies)} file"
+                      f"{'s' if len(copies) != 1 else ''} under {args.patch_dir}")
+                for c in copies:
+                    print(f"  {c}")
+            else:
+                print(f"no patched copy written under {args.patch_dir}")
+        print(verdict(result))
     return 0 if result.all_passed else 1
 
 
-def render(result) -> str:
+def _n(count: int, what: str, plural: str | None = None) -> str:
+    return f"{count} {what if count == 1 else (plural or what + 's')}"
+
+
+def verdict(result) -> str:
+    """The last line: why the exit status is what it is."""
+    sm = result.summary
+    if result.all_passed:
+        return f"exit 0: every entry passed ({sm['total']})"
+    why = []
+    for key, what, plural in (("over_tolerance", "entry over tolerance", "entries over tolerance"),
+                              ("rejected", "rejected entry", "rejected entries"),
+                              ("errors", "entry failed", "entries failed")):
+        if sm.get(key):
+            why.append(_n(sm[key], what, plural))
+    refused = sum(r.patch_error is not None for r in result.entries)
+    if refused:
+        why.append(_n(refused, "patched copy not written", "patched copies not written")
+                   + " (patch errors above)")
+    return "exit 1: " + (", ".join(why) or "not every entry passed")
+
+
+def _used(s) -> str:
+    n_used, n_points = getattr(s, "n_used", None), getattr(s, "n_points", None)
+    if n_used is None or n_points is None:
+        return "-"
+    return f"{n_used}/{n_points}"
+
+
+def render(result, patching: bool | None = None) -> str:
+    """The text table, the errors and patch errors, groups and summary lines.
+    ``patching``: show the patch column and counts (default: when any entry
+    has a patched copy or a patch error)."""
     from ..output import fmt, table
 
+    if patching is None:
+        patching = any(r.patched is not None or r.patch_error is not None for r in result.entries)
     rows = []
     for r in result.entries:
-        s = r.solution if r.error is None else None
         d = r.delta or {}
-        rows.append([r.entry.name, r.status,
-                     f"{s.n_used}/{s.n_points}" if s is not None else "-",
-                     fmt(r.e), fmt(r.dt_mean), fmt(r.group),
-                     fmt(d.get("dx")), fmt(d.get("dy")), fmt(d.get("dz")),
-                     fmt(d.get("angle"), 4)])
-    out = [table(["entry", "status", "used", "e", "dt_mean", "group", "dx", "dy", "dz", "angle"],
-                 rows, right={2, 3, 4, 5, 6, 7, 8, 9})]
+        row = [r.entry.name, r.status, _used(r.solution),
+               fmt(r.e), fmt(r.dt_mean), fmt(r.group),
+               fmt(d.get("dx")), fmt(d.get("dy")), fmt(d.get("dz")),
+               fmt(d.get("angle"), 4)]
+        if patching:
+            row.append("REFUSED" if r.patch_error is not None else
+                       "written" if r.patched is not None else "-")
+        rows.append(row)
+    headers = ["entry", "status", "used", "e", "dt_mean", "group", "dx", "dy", "dz", "angle"]
+    if patching:
+        headers.append("patch")
+    out = [table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9})]
     errors = [r for r in result.entries if r.error is not None]
     if errors:
         out.append("")
         out.append("errors:")
         out.extend(f"  {r.entry.name}: {r.error}" for r in errors)
+    refused = [r for r in result.entries if r.patch_error is not None]
+    if refused:
+        out.append("")
+        out.append("patch errors (no patched copy written for these):")
+        out.extend(f"  {r.entry.name}: {r.patch_error}" for r in refused)
+    unc = [r for r in result.entries if getattr(r, "uncertainty_error", None) is not None]
+    if unc:
+        out.append("")
+        out.append("uncertainty not computed:")
+        out.extend(f"  {r.entry.name}: {r.uncertainty_error}" for r in unc)
     sm = result.summary
     out.append("")
     grows = []
     for g in sm["groups"]:
         lo, hi = g["range"]
         span = f"{lo:g} <= dt_mean < {hi:g}" if hi is not None else f"dt_mean >= {lo:g}"
-        grows.append([g["group"], span, g["count"], f"{g['percent']:.1f}", fmt(g["mean_e"]),
-                      fmt(g["std_e"])])
+        grows.append([g["group"], span, g["count"], fmt(g.get("percent"), 1), fmt(g.get("mean_e")),
+                      fmt(g.get("std_e"))])
     out.append(table(["group", "mm", "count", "% of total", "mean e", "std e"], grows,
                      right={2, 3, 4, 5}))
     out.append("")
-    c = sm["correlation"]
+    c = sm.get("correlation") or {}
     out.append(f"total {sm['total']}   passed {sm['passed']}   over tolerance "
                f"{sm['over_tolerance']}   rejected {sm['rejected']}   errors {sm['errors']}   "
                f"success rate {100 * sm['success_rate']:.1f} %")
+    if patching:
+        out.append(f"patched {sm.get('patched', 0)}   patch errors {sm.get('patch_errors', 0)}")
     out.append("correlation simulated vs measured (passing entries): "
-               + "   ".join(f"{k} {fmt(c[k], 5)}" for k in "xyz"))
+               + "   ".join(f"{k} {fmt(c.get(k), 5)}" for k in "xyz"))
     return "\n".join(out) + "\n"
