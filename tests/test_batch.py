@@ -542,7 +542,7 @@ def _tcp_base_manifest(tmp_path) -> Path:
     TCP base): e is None but n_used, rms, points are there."""
     cfg = json.dumps(str(KUKA / "$config.dat"))
     m = tmp_path / "m.toml"
-    m.write_text(f"[[entry]]\nname = 'tcp base'\ncontroller = {cfg}\nframe = 'part_in_gripper'\n"
+    m.write_text(f"[[entry]]\nname = 'tcp base'\ncontroller = {cfg}\nframe = 'fixed_spindle'\n"
                  f"measurement = {json.dumps(str(KUKA / 'base3_points.csv'))}\n"
                  f"tool = {json.dumps(str(KUKA / '$config.dat') + ':TOOL_DATA[2]')}\n")
     return m

@@ -201,7 +201,7 @@ def test_entry_failed_after_it_was_solved():
     entry = {"name": "R01", "status": "error", "accepted": False, "e": None, "dt_mean": None,
              "group": None, "pass": False, "frame": None, "stage": "diff",
              "error": "frame BASE_DATA[2]: BASE_TYPE #TCP: not a plain base",
-             "frame_name": "part_in_gripper", "controller": "$config.dat", "threshold": 1.5,
+             "frame_name": "fixed_spindle", "controller": "$config.dat", "threshold": 1.5,
              "min_points": 6, "tolerance": 100.0, "n_points": 8, "n_used": 7, "rms": 0.0612,
              "mean": 0.05, "max": 0.1, "simulated": {"x": 1.0, "y": 2.0, "z": 3.0, "a": 0.0,
                                                      "b": 0.0, "c": 0.0, "q": [1, 0, 0, 0]},

@@ -25,7 +25,11 @@ def run(args) -> int:
         else:
             nums = [fmt(v) for v in (p.x, p.y, p.z)] + [fmt(v, 4) for v in p.abc] + \
                    ["[" + ", ".join(f"{v:.6f}" for v in p.q) + "]"]
-        rows.append([f.name, f.type, f.label or "", f.reference, *nums, f"{f.file}:{f.line}"])
+        ref = f.reference
+        role = f.info.get("role")
+        if role in ("external_tcp", "workpiece"):   # KUKA: not a plain tool or base
+            ref += f" ({role.replace('_', ' ')})"
+        rows.append([f.name, f.type, f.label or "", ref, *nums, f"{f.file}:{f.line}"])
     if rows:
         print(table(["name", "type", "label", "ref", "x", "y", "z", "a", "b", "c", "q", "at"],
                     rows, right={4, 5, 6, 7, 8, 9}))
