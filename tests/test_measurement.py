@@ -223,3 +223,91 @@ def test_cp1252_file_and_tabs(tmp_path):
     np.testing.assert_allclose(m.laser[0], [0.5, 1, 2])
     f.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
     assert read_measurement(f).names == ["Bohrung Ø8"]
+
+
+# ------------------------------------------------------------------ acceptance findings
+
+HEAD9 = "laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"
+
+
+def test_more_fields_than_header_is_an_error_at_the_first_extra_field():
+    # 1841.343819 typed with a decimal comma in a comma-separated file: 10 fields, 9 columns
+    bad = "327.702594,-90.800864,49.593688,1841,343819,-187.72,1200.5,10,20,30"
+    text = HEAD9 + "\n1,2,3,4,5,6,0,0,0\n" + bad + "\n"
+    col = len(bad) - len("30") + 1                       # the 10th field
+    with pytest.raises(UcsioError) as info:
+        parse_measurement(text, "m.csv")
+    msg = str(info.value)
+    assert msg.startswith(f"m.csv:3:{col}: "), msg
+    assert "10 fields" in msg and "header (line 1) has 9" in msg and "decimal comma" in msg
+    assert info.value.exit_code == 2
+    # the same in a ';' file: still an error, no decimal-comma hint
+    text = HEAD9.replace(",", ";") + "\n1;2;3;4;5;6;0;0;0;7\n"
+    with pytest.raises(UcsioError, match=r"^m\.csv:2:19: 10 fields, but the header") as info:
+        parse_measurement(text, "m.csv")
+    assert "decimal comma" not in str(info.value)
+    # a header with a trailing separator and rows with one too: same width, fine
+    assert len(parse_measurement(HEAD9 + ",\n1,2,3,4,5,6,0,0,0,\n", "m.csv")) == 1
+
+
+@pytest.mark.parametrize("sep, empty", [(";", ";;;;;;;;;"), (",", ",,,,,"), (",", ",,,,,,,,,,,,"),
+                                        (";", '"";"";""'), ("\t", "\t\t\t")])
+def test_rows_of_empty_fields_are_skipped(sep, empty):
+    text = "\n".join([HEAD9.replace(",", sep), sep.join("1 2 3 4 5 6 0 0 0".split()), empty,
+                      sep.join("7 8 9 4 5 6 0 0 0".split()), empty, empty, ""])
+    m = parse_measurement(text, "m.csv")
+    assert len(m) == 2 and m.lines == [2, 4]
+    np.testing.assert_allclose(m.laser[1], [7, 8, 9])
+    # before the header too
+    assert len(parse_measurement(empty + "\n" + text, "m.csv")) == 2
+
+
+@pytest.mark.parametrize("hint, sep, decimal", [("sep=;", ";", ","), ("sep=,", ",", "."),
+                                                ('"sep=;"', ";", ","), ("SEP=|", "|", ","),
+                                                ("sep=\t", "\t", ",")])
+def test_excel_separator_hint(hint, sep, decimal):
+    rows = [HEAD9.split(","), "0.5 1 2 3 4 5 6 7 8".split()]
+    text = hint + "\r\n" + "\r\n".join(sep.join(c.replace(".", decimal) for c in r) for r in rows)
+    m = parse_measurement(text, "m.csv")
+    assert m.lines == [3]
+    np.testing.assert_allclose(m.laser[0], [0.5, 1, 2])
+    np.testing.assert_allclose(m.orientation[0], [6, 7, 8])
+
+
+def test_separator_hint_wins_over_the_guess_and_bad_hints_are_errors():
+    # the hint says ',' although a column name holds a ';'
+    text = "sep=,\n" + HEAD9 + ",a;b\n1,2,3,4,5,6,0,0,0,x\n"
+    assert len(parse_measurement(text, "m.csv")) == 1
+    with pytest.raises(UcsioError, match=r"^m\.csv:1: separator hint 'sep=x'"):
+        parse_measurement("sep=x\n" + HEAD9 + "\n1,2,3,4,5,6,0,0,0\n", "m.csv")
+    # only before the header: later it is a data row
+    with pytest.raises(UcsioError, match=r"^m\.csv:2"):
+        parse_measurement(HEAD9 + "\nsep=;\n", "m.csv")
+
+
+@pytest.mark.parametrize("name, suggestion", [("weigth", "weight"), ("laser-x", "laser_x"),
+                                              ("robot_q5", "robot_q4"), ("Laser X", "laser_x"),
+                                              ("points", "point"), ("robot-a", "robot_a")])
+def test_near_miss_column_is_an_error_with_a_suggestion(name, suggestion):
+    text = HEAD9 + f",{name}\n1,2,3,4,5,6,0,0,0,1\n"
+    with pytest.raises(UcsioError) as info:
+        parse_measurement(text, "m.csv")
+    msg = str(info.value)
+    assert msg.startswith(f"m.csv:1:{len(HEAD9) + 2}: "), msg
+    assert f"unknown column {name!r} \u2014 did you mean {suggestion!r}?" in msg
+    # also where the misspelt column replaces a needed one
+    text = HEAD9.replace("laser_x", name) + "\n1,2,3,4,5,6,0,0,0\n"
+    if name.lower().replace("-", "_").replace(" ", "_") == "laser_x":
+        with pytest.raises(UcsioError, match=r"^m\.csv:1:1: unknown column"):
+            parse_measurement(text, "m.csv")
+
+
+@pytest.mark.parametrize("extra", ["comment", "note", "notes", "time", "timestamp", "operator",
+                                   "date", "remark", "description", "temperature", "status",
+                                   "id", "index", "nr", "robot_s", "robot_t", "robot_e1",
+                                   "robot_a1", "robot_cf1", "laser_dx", "laser_rms", ""])
+def test_ordinary_extra_columns_stay_accepted(extra):
+    text = f"point,{extra},{HEAD9}\nP1,some text,1,2,3,4,5,6,0,0,0\n"
+    m = parse_measurement(text, "m.csv")
+    assert m.names == ["P1"]
+    np.testing.assert_allclose(m.laser[0], [1, 2, 3])

@@ -424,3 +424,95 @@ def test_bad_noise_levels_are_refused(option, value, capsys):
     rc = main(["solve", str(FIXTURES / "abb_wobj.csv"), "--uncertainty", "10", option, value])
     err = capsys.readouterr().err
     assert rc == 2 and option in err and err.count("\n") == 1
+
+
+# ------------------------------------------------------------------ nothing unjudged is accepted
+
+THREE_BAD = """point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c
+A,0,0,0,1000,0,0,0,0,0
+B,500,0,0,1500,0,0,0,0,0
+C,0,500,0,1000,520,0,0,0,0
+"""
+
+
+def test_three_points_over_threshold_are_rejected_not_accepted(capsys, tmp_path):
+    f = tmp_path / "three_bad.csv"
+    f.write_text(THREE_BAD)
+    rc, out, err = run_cli(capsys, str(f), "--min-points", "3", "--json")
+    assert rc == 1 and err == ""
+    d = json.loads(out)
+    assert d["accepted"] is False and d["n_used"] == 3 and d["max"] > 12.0
+    assert "no point can be singled out" in d["reason"] and "at least 4 points" in d["reason"]
+    # --no-exclusion keeps every point: then the count alone decides
+    rc, out, err = run_cli(capsys, str(f), "--min-points", "3", "--no-exclusion", "--json")
+    d = json.loads(out)
+    assert rc == 0 and d["accepted"] is True and d["reason"] is None
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4, 7, 8])
+def test_exclusion_down_to_three_points_still_over_threshold_is_rejected(seed):
+    names, laser, robot, *_ = pointset(seed, n=6, noise=4.0)      # every point off by mm
+    sol = solve_points(names, laser, robot, min_points=3)
+    assert sol.n_used == 3 and sol.max > sol.threshold
+    assert not sol.accepted
+    assert sol.reason.startswith("residuals over the threshold and no point can be singled out")
+    assert sol.as_dict()["reason"] == sol.reason
+    sol = solve_points(names, laser, robot, min_points=3, no_exclusion=True)
+    assert sol.accepted and sol.n_used == 6 and sol.reason is None
+
+
+def test_exclusion_down_to_three_points_within_threshold_is_accepted():
+    names, laser, robot, *_ = pointset(9, n=6, noise=4.0)
+    sol = solve_points(names, laser, robot, min_points=3)
+    assert sol.n_used == 3 and sol.max <= sol.threshold and sol.accepted and sol.reason is None
+
+
+def test_wrong_tcp_is_rejected_whatever_min_points(capsys):
+    for mp in ("3", "4", "6"):
+        rc, out, _ = run_cli(capsys, str(KUKA), "--tcp", "0,0,50", "--min-points", mp, "--json")
+        d = json.loads(out)
+        assert rc == 1 and d["accepted"] is False and d["reason"], mp
+    rc, out, _ = run_cli(capsys, str(KUKA), "--tcp", KUKA_TCP, "--min-points", "3", "--json")
+    assert rc == 0 and json.loads(out)["reason"] is None
+
+
+def test_reasons_for_too_few_points():
+    names, laser, robot, *_ = pointset(3, n=7, noise=0.02)
+    robot[1] += [0.0, 6.0, 0.0]
+    robot[4] += [0.0, 0.0, -9.0]
+    sol = solve_points(names, laser, robot)
+    assert not sol.accepted and sol.reason.startswith("too few points within the threshold: 5 left")
+    assert "excluding 2 outliers" in sol.reason and "at least 6 needed" in sol.reason
+    sol = solve_points(names, laser, robot, exclude=["P2", "P5"])
+    assert not sol.accepted and sol.reason == "too few points: 5 used, at least 6 needed"
+    sol = solve_points(names, laser, robot, exclude=["P2", "P5"], min_points=5)
+    assert sol.accepted and sol.reason is None and sol.as_dict()["reason"] is None
+
+
+def test_acceptance_rule():
+    from ucsio.solve import acceptance
+    kw = dict(threshold=1.5, min_points=3)
+    assert acceptance(3, 1.5, **kw) == (True, None)
+    ok, why = acceptance(3, 1.6, **kw)
+    assert not ok and "needs at least 4 points" in why
+    ok, why = acceptance(5, 2.0, **kw)                       # exclusion could not single one out
+    assert not ok and "no leave-one-out frame" in why
+    assert acceptance(3, 99.0, no_exclusion=True, **kw) == (True, None)
+    assert acceptance(2, 0.1, no_exclusion=True, **kw)[0] is False
+    assert not acceptance(5, float("nan"), **kw)[0]
+
+
+def test_rejected_solution_built_elsewhere_still_has_a_reason():
+    from ucsio.solve import Solution
+    sol = solve_points(*pointset(1, noise=0.1)[:3])
+    other = Solution(pose=sol.pose, points=sol.points, n_points=9, n_used=4, rms=0.1, mean=0.1,
+                     max=0.1, accepted=False, min_points=6)
+    assert other.reason == "too few points: 4 used, at least 6 needed"
+
+
+def test_text_output_prints_the_reason(capsys, tmp_path):
+    f = tmp_path / "three_bad.csv"
+    f.write_text(THREE_BAD)
+    rc, out, err = run_cli(capsys, str(f), "--min-points", "3")
+    assert rc == 1
+    assert "residuals over the threshold and no point can be singled out" in out

@@ -11,16 +11,25 @@ columns in any order, header names case-insensitive:
   robot_r`` (Fanuc, deg)
 - ``weight`` (optional, default 1; must be positive)
 
-Other columns are ignored. Lines starting with ``#`` and blank lines are
-skipped. A header containing ``;`` means a European export: ``;`` separates
-fields and a decimal comma is accepted (``1234,5``). Tab-separated files work
-too. Every error names the file, the line and (where it is one cell) the
+Other columns are ignored (``comment``, ``time``, ...), but a header name
+that is a near miss of a known one (``weigth``, ``laser-x``, ``robot_q5``)
+is an error with the suggestion: a typo must not silently drop a column.
+Lines starting with ``#``, blank lines and rows whose fields are all empty
+(``;;;;;``, as spreadsheets export) are skipped. A header containing ``;``
+means a European export: ``;`` separates fields and a decimal comma is
+accepted (``1234,5``). Tab-separated files work too. Excel's separator hint,
+a first line ``sep=;`` (or ``sep=,`` ...), sets the separator. A data row
+with fewer fields than the known columns need, or with more fields than the
+header (a decimal comma in a comma-separated file shifts the columns), is an
+error. Every error names the file, the line and (where it is one cell) the
 column.
 """
 from __future__ import annotations
 
+import difflib
 import math
 import os
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,6 +45,20 @@ FORM_LABEL = {"kuka": "robot_a/b/c (KUKA)", "abb": "robot_q1..q4 (ABB)",
               "fanuc": "robot_w/p/r (Fanuc)"}
 POSITION = ("laser_x", "laser_y", "laser_z", "robot_x", "robot_y", "robot_z")
 KNOWN = set(POSITION) | {"point", "weight"} | {c for cols in FORMS.values() for c in cols}
+
+#: A header name this close to a known one (difflib ratio) is taken for a
+#: typo of it: ``weigth``/``weight`` 0.83, ``laser-x``/``laser_x`` 0.86,
+#: ``robot_q5``/``robot_q4`` 0.88; everyday extra columns (``comment``,
+#: ``note``, ``time``, ``timestamp``, ``operator``) score below 0.55.
+NEAR_MISS_CUTOFF = 0.8
+#: Extra columns that are legitimately close to a known name: the rest of a
+#: KUKA E6POS (S, T, E1..E6) or axis values (A1..A6), joints, ABB robconf and
+#: external axes, deviations and tracker statistics.
+EXTRA_OK = re.compile(r"robot_(s|t|status|turn|e\d+|a\d+|j\d+|axis_?\d+|cf[146x]|cfg|conf\w*|"
+                      r"eax\w*|ext\w*)|(laser|robot)_(d[xyz]|dist|rms|sigma|std|err\w*|unc\w*)")
+#: Excel's separator hint, the first line of a file: ``sep=;``.
+SEP_HINT = re.compile(r'\s*"?sep=(.)"?\s*', re.IGNORECASE)
+SEPARATORS = (",", ";", "\t", "|")
 
 #: ABB quaternions are read back to 6 decimals; further off than this from
 #: unit norm is a typo or a wrong column, not rounding.
@@ -174,12 +197,24 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
     header = None
     rows: list[tuple[int, list[tuple[str, int]]]] = []
     sep = ","
+    hinted = False
     for lineno, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
+        if header is None and not hinted:
+            m = SEP_HINT.fullmatch(line)
+            if m:                                   # Excel: "sep=;" before the header
+                if m.group(1) not in SEPARATORS:
+                    raise UcsioError(f"separator hint {stripped!r}: expected sep=, sep=; "
+                                     "sep=| or a tab", file=path, line=lineno)
+                sep, hinted = m.group(1), True
+                continue
+        if not stripped.strip(",;|\t \"" + sep):
+            continue                                # a spreadsheet row of empty cells
         if header is None:
-            sep = ";" if ";" in line else ("\t" if "\t" in line else ",")
+            if not hinted:
+                sep = ";" if ";" in line else ("\t" if "\t" in line else ",")
             header = (lineno, _split(line, sep))
             continue
         rows.append((lineno, _split(line, sep)))
@@ -195,6 +230,11 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
             if key in columns:
                 raise UcsioError(f"column {key!r} given twice", file=path, line=header_line, col=col)
             columns[key] = idx
+        elif key and not EXTRA_OK.fullmatch(key):
+            close = difflib.get_close_matches(key, sorted(KNOWN), n=1, cutoff=NEAR_MISS_CUTOFF)
+            if close:
+                raise UcsioError(f"unknown column {name.strip()!r} \u2014 did you mean "
+                                 f"{close[0]!r}?", file=path, line=header_line, col=col)
 
     present = [form for form, cols in FORMS.items() if any(c in columns for c in cols)]
     if len(present) > 1:
@@ -238,6 +278,12 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
         if len(fields) < width:
             raise UcsioError(f"expected at least {width} fields, found {len(fields)}",
                              file=path, line=lineno)
+        if len(fields) > len(header_fields):
+            hint = ("; a decimal comma in a comma-separated file?" if sep == ","
+                    else "")
+            raise UcsioError(f"{len(fields)} fields, but the header (line {header_line}) has "
+                             f"{len(header_fields)}: the columns would shift{hint}",
+                             file=path, line=lineno, col=fields[len(header_fields)][1])
         for k, key in enumerate(needed):
             values[r, k] = number(fields, key, lineno)
         if "weight" in columns and fields[columns["weight"]][0].strip():

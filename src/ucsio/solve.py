@@ -8,7 +8,12 @@
 4. Exclusion: while the largest leave-one-out residual among the used points
    exceeds the threshold, exclude that one point and refit; stop as soon as
    every remaining point's residual in the refit is within the threshold.
-   Fewer than ``min_points`` left: rejected.
+   Fewer than ``min_points`` left: rejected. With exclusion on, a set whose
+   used points are still not all within the threshold when exclusion cannot
+   go on (3 points left: no leave-one-out residual; every leave-one-out frame
+   degenerate) is rejected too: nothing vouches for that frame.
+   ``--no-exclusion`` keeps every point, and then the point count alone
+   decides (``acceptance``); ``reason`` says why a set was rejected.
 5. Degenerate point sets raise UcsioError (exit 2).
 
 Also ``uncertainty`` (Monte Carlo through the batched solver, with a
@@ -71,6 +76,13 @@ class Solution:
     tool: str | None = None
     no_exclusion: bool = False
     uncertainty: dict[str, Any] | None = None
+    reason: str | None = None    # why the dataset was rejected (None when accepted)
+
+    def __post_init__(self) -> None:
+        # a Solution built elsewhere (the batched solver) without a reason still says why
+        if not self.accepted and self.reason is None:
+            self.reason = (f"too few points: {self.n_used} used, at least {self.min_points}"
+                           " needed")
 
     @property
     def matrix4(self) -> list[list[float]]:
@@ -90,7 +102,7 @@ class Solution:
             "points": [p.as_dict() for p in self.points],
             "n_points": self.n_points, "n_used": self.n_used,
             "rms": self.rms, "mean": self.mean, "max": self.max,
-            "accepted": self.accepted,
+            "accepted": self.accepted, "reason": self.reason,
             "settings": {"tcp": list(self.tcp), "tool": self.tool, "threshold": self.threshold,
                          "min_points": self.min_points, "no_exclusion": self.no_exclusion,
                          "source": self.source},
@@ -115,6 +127,34 @@ def leave_one_out(laser: np.ndarray, robot: np.ndarray, weights: np.ndarray) -> 
     predicted = np.einsum("bij,bj->bi", fit.R, laser) + fit.t
     loo = np.linalg.norm(robot - predicted, axis=1)
     return np.where(fit.ok, loo, np.nan)
+
+
+def acceptance(n_used: int, max_residual: float, *, threshold: float, min_points: int,
+               no_exclusion: bool = False, n_auto: int = 0) -> tuple[bool, str | None]:
+    """Judge a fitted set: (accepted, reason why not).
+
+    - fewer than ``min_points`` used points: rejected (measure again);
+    - with exclusion on, the used points must all be within ``threshold`` of
+      the final frame. The exclusion loop ends with points over it only when
+      it cannot single out a culprit (3 points left, so no leave-one-out
+      residual; or no leave-one-out frame determined), and then nothing has
+      judged the frame: rejected;
+    - with ``no_exclusion`` every point is kept on purpose and the residuals
+      are the engineer's to read: acceptance is by the point count alone.
+    """
+    if n_used < min_points:
+        if n_auto:
+            return False, (f"too few points within the threshold: {n_used} left after excluding "
+                           f"{n_auto} outlier{'s' if n_auto != 1 else ''}, at least {min_points}"
+                           " needed")
+        return False, f"too few points: {n_used} used, at least {min_points} needed"
+    if not no_exclusion and not max_residual <= threshold:
+        why = ("the leave-one-out residual needs at least 4 points" if n_used < 4
+               else "no leave-one-out frame singles out an outlier")
+        return False, (f"residuals over the threshold and no point can be singled out: max "
+                       f"{max_residual:.3f} mm > {threshold:g} mm with {n_used} points used "
+                       f"({why})")
+    return True, None
 
 
 def solve_points(names: Sequence[str], laser, robot, weights=None, *,
@@ -150,6 +190,10 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
             raise UcsioError(f"cannot fit a frame{which}: {exc.message}") from None
 
     current = fit(used)
+    # --no-exclusion keeps every point (bar --exclude): no loop, and acceptance
+    # is by the point count only. With exclusion on, the loop below may end
+    # with points still over the threshold (3 left: no leave-one-out residual;
+    # no leave-one-out frame determined); ``acceptance`` then rejects the set.
     if not no_exclusion:
         while used.sum() - 1 >= 3:
             ids = np.flatnonzero(used)
@@ -173,6 +217,9 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
     loo_all[ids] = leave_one_out(laser[ids], robot[ids], weights[ids])
     r_used = residual[used]
     n_used = int(used.sum())
+    accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=threshold,
+                                  min_points=min_points, no_exclusion=no_exclusion,
+                                  n_auto=excluded_by.count("auto"))
     pose = Pose.from_matrix(tuple(map(tuple, current.R.tolist())), current.t.tolist())
     points = [PointResult(name=names[i], residual=float(residual[i]), loo_residual=float(loo_all[i]),
                           used=bool(used[i]), dx=float(d[i, 0]), dy=float(d[i, 1]),
@@ -181,7 +228,7 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
               for i in range(n)]
     return Solution(pose=pose, points=points, n_points=n, n_used=n_used,
                     rms=float(np.sqrt(np.mean(r_used ** 2))), mean=float(np.mean(r_used)),
-                    max=float(np.max(r_used)), accepted=n_used >= min_points,
+                    max=float(np.max(r_used)), accepted=accepted, reason=reason,
                     threshold=float(threshold), min_points=int(min_points),
                     no_exclusion=bool(no_exclusion))
 
@@ -308,5 +355,5 @@ def solution_uncertainty(measurement, sol: Solution, n_samples: int,
 # ---------------------------------------------------------------- SOLUTION.json
 
 
-__all__ = ["Solution", "PointResult", "solve", "solve_points", "leave_one_out", "uncertainty", "check_sigmas",
+__all__ = ["Solution", "PointResult", "acceptance", "solve", "solve_points", "leave_one_out", "uncertainty", "check_sigmas",
            "analytical_std", "solution_uncertainty", "load_solution", "pose_from_json"]

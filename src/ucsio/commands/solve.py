@@ -1,6 +1,7 @@
 """Fit the measured UCS to laser/robot point pairs (Horn's closed form),
 with leave-one-out outlier exclusion. Exit 0 accepted, 1 rejected (too few
-points left), 2 bad input."""
+points left, or residuals over the threshold that exclusion cannot resolve;
+the reason is printed), 2 bad input."""
 from __future__ import annotations
 
 import argparse
@@ -143,7 +144,5 @@ def render(sol) -> str:
         urows = [[k, f"{s[k]:.4f}", f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
                  for k in ("x", "y", "z", "angle")]
         lines.append(table(["", "std", "ci95", "analytical std"], urows, right={1, 3}))
-    lines.append("accepted" if sol.accepted else
-                 f"REJECTED: only {sol.n_used} points left, at least {sol.min_points} needed;"
-                 " measure again")
+    lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
     return "\n".join(lines) + "\n"
