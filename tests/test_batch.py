@@ -707,3 +707,22 @@ def test_bad_sigma_fails_fast(tmp_path, capsys, opt, value):
                               opt, value, "--report", str(tmp_path / "r.html")], capsys)
     assert code == 2 and out == "" and err.count("\n") == 1 and opt in err
     assert not (tmp_path / "r.html").exists()
+
+
+def test_unjudged_three_point_set_is_rejected_as_solve_rejects_it(tmp_path, capsys):
+    """With 3 points no leave-one-out residual exists: residuals over the
+    threshold then reject the set, in batch exactly as in `ucsio solve`."""
+    (tmp_path / "three.csv").write_text(
+        "point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c\n"
+        "A,0,0,0,1000,0,0,0,0,0\nB,500,0,0,1500,0,0,0,0,0\nC,0,500,0,1000,520,0,0,0,0\n")
+    (tmp_path / "cell.mod").write_text(
+        'MODULE cell\n  PERS wobjdata w:=[FALSE,TRUE,"",[[1000,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
+        "ENDMODULE\n")
+    (tmp_path / "m.toml").write_text("[defaults]\nmin_points = 3\n[[entry]]\nname = 'three'\n"
+                                     "measurement = 'three.csv'\ncontroller = 'cell.mod'\nframe = 'w'\n")
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
+    data = json.loads(out)
+    e = data["entries"][0]
+    assert code == 1 and e["accepted"] is False and data["summary"]["rejected"] == 1
+    code, out, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--min-points", "3", "--json"], capsys)
+    assert code == 1 and json.loads(out)["accepted"] is False

@@ -318,7 +318,7 @@ def solve_many(data: Sequence[Dataset]) -> list:
     excludes. Returns, per dataset, a ``ucsio.solve.Solution`` or the
     ``UcsioError`` that ``solve_points`` would have raised."""
     from . import horn
-    from .solve import PointResult, Solution
+    from .solve import PointResult, Solution, acceptance
 
     results: list = [None] * len(data)
     used: dict[int, np.ndarray] = {}
@@ -385,6 +385,9 @@ def solve_many(data: Sequence[Dataset]) -> list:
         r_used = resid[u]
         n_used = int(u.sum())
         pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
+        accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=d.threshold,
+                                      min_points=d.min_points, no_exclusion=d.no_exclusion,
+                                      n_auto=excluded_by[i].count("auto"))
         points = [PointResult(name=d.names[k], residual=float(resid[k]),
                               loo_residual=float(loo_all[k]), used=bool(u[k]),
                               dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
@@ -394,7 +397,7 @@ def solve_many(data: Sequence[Dataset]) -> list:
         results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
                               rms=float(np.sqrt(np.mean(r_used ** 2))),
                               mean=float(np.mean(r_used)), max=float(np.max(r_used)),
-                              accepted=n_used >= d.min_points, threshold=float(d.threshold),
+                              accepted=accepted, reason=reason, threshold=float(d.threshold),
                               min_points=int(d.min_points), source=d.path,
                               no_exclusion=bool(d.no_exclusion))
     return results
