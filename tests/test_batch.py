@@ -222,7 +222,8 @@ def test_one_horn_call_per_round_and_one_parse_per_file(fleet, monkeypatch):
 
 
 def test_padding_budget_buckets_by_point_count(monkeypatch):
-    monkeypatch.setattr(B, "PAD_BUDGET", 10)
+    from ucsio import solve
+    monkeypatch.setattr(solve, "PAD_BUDGET", 10)
     rng = np.random.default_rng(2)
     data = []
     for n in (6, 7, 20):

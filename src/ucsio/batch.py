@@ -40,16 +40,13 @@ from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
 from .files import atomic_write_text
 from .frames import Pose
+from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
 ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
               "min_points", "tolerance", "exclude", "no_exclusion")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("measurement", "controller", "frame")
-#: padded (sets x points x points) elements above which one round is split
-#: into Horn calls by point count (a 200-point dataset would otherwise pad
-#: every 8-point one to 200 x 200).
-PAD_BUDGET = 6_000_000
 
 Progress = Callable[[str, int, int], None]
 
@@ -232,175 +229,6 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
         except UcsioError as exc:
             entries.append(_broken_entry(i, name, raw, defaults, base, str(exc)))
     return Manifest(path=path, entries=entries)
-
-
-# ---------------------------------------------------------------- solving, batched
-
-@dataclass
-class Dataset:
-    """One dataset for ``solve_many``: points already in robot world."""
-
-    names: list[str]
-    laser: np.ndarray            # (n, 3)
-    robot: np.ndarray            # (n, 3)
-    weights: np.ndarray          # (n,)
-    threshold: float = 1.5
-    min_points: int = 6
-    exclude: tuple[str, ...] = ()
-    no_exclusion: bool = False
-    lines: list[int] | None = None
-    path: str | None = None      # for error messages
-
-
-def _fit_sets(laser, robot, weights):
-    """Horn fits of (S, n, 3) sets: R (S,3,3), t (S,3), ok (S,)."""
-    from .horn import horn_batch
-    fit = horn_batch(laser, robot, weights)
-    return fit.R, fit.t, fit.ok, fit.status
-
-
-def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
-    """For every active dataset: the fit of its used points and the
-    leave-one-out fit of each point, in as few Horn calls as the padding
-    budget allows (one, normally). Returns per dataset (R, t, status,
-    residual (n,), loo (n,) with nan where undetermined or not used)."""
-    out: dict[int, tuple] = {}
-    sizes = {i: len(data[i].names) for i in active}
-    chunks: list[list[int]] = []
-    n_max = max(sizes.values())
-    if len(active) * (n_max + 1) * n_max * 3 <= PAD_BUDGET:
-        chunks = [active]
-    else:   # bucket by point count (powers of two), so padding stays bounded
-        buckets: dict[int, list[int]] = {}
-        for i in active:
-            buckets.setdefault(max(4, 1 << (sizes[i] - 1).bit_length()), []).append(i)
-        chunks = [buckets[k] for k in sorted(buckets)]
-    for chunk in chunks:
-        A = len(chunk)
-        n = max(sizes[i] for i in chunk)
-        L = np.zeros((A, n, 3))
-        Rb = np.zeros((A, n, 3))
-        W = np.zeros((A, n))
-        for a, i in enumerate(chunk):
-            d = data[i]
-            m = sizes[i]
-            L[a, :m] = d.laser
-            Rb[a, :m] = d.robot
-            W[a, :m] = d.weights * used[i]
-        # stack: A full fits, then A * n leave-one-out fits (point j's weight zeroed)
-        W_loo = (W[:, None, :] * (1.0 - np.eye(n))[None]).reshape(A * n, n)
-        L_all = np.concatenate([L, np.repeat(L, n, axis=0)])
-        R_all = np.concatenate([Rb, np.repeat(Rb, n, axis=0)])
-        W_all = np.concatenate([W, W_loo])
-        R, t, ok, status = _fit_sets(L_all, R_all, W_all)
-        Rf, tf, stf = R[:A], t[:A], status[:A]
-        pred = np.einsum("aij,anj->ani", Rf, L) + tf[:, None, :]
-        resid = np.linalg.norm(Rb - pred, axis=2)                       # (A, n)
-        Rl = R[A:].reshape(A, n, 3, 3)
-        tl = t[A:].reshape(A, n, 3)
-        okl = ok[A:].reshape(A, n)
-        pred_l = np.einsum("anij,anj->ani", Rl, L) + tl
-        loo = np.linalg.norm(Rb - pred_l, axis=2)
-        n_used = (W > 0).sum(axis=1)
-        loo = np.where(okl & (W > 0) & (n_used[:, None] >= 4), loo, np.nan)
-        for a, i in enumerate(chunk):
-            m = sizes[i]
-            out[i] = (Rf[a], tf[a], int(stf[a]), resid[a, :m], loo[a, :m])
-    return out
-
-
-def solve_many(data: Sequence[Dataset]) -> list:
-    """The method of ``ucsio.solve.solve_points`` on many datasets at once.
-
-    Each round fits every still-active dataset and all its leave-one-out
-    subsets in one batched Horn call; the exclusion rule then runs per
-    dataset on those numbers. Rounds = 1 + the most points any dataset
-    excludes. Returns, per dataset, a ``ucsio.solve.Solution`` or the
-    ``UcsioError`` that ``solve_points`` would have raised."""
-    from . import horn
-    from .solve import PointResult, Solution, acceptance
-
-    results: list = [None] * len(data)
-    used: dict[int, np.ndarray] = {}
-    excluded_by: dict[int, list] = {}
-    active: list[int] = []
-    for i, d in enumerate(data):
-        n = len(d.names)
-        marks: list[str | None] = [None] * n
-        by_name = {nm.casefold(): k for k, nm in enumerate(d.names)}
-        bad = None
-        for name in d.exclude:
-            k = by_name.get(name.strip().casefold())
-            if k is None:
-                bad = UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(d.names)})",
-                                 file=d.path)
-                break
-            marks[k] = "hand"
-        if bad is not None:
-            results[i] = bad
-            continue
-        used[i] = np.array([m is None for m in marks])
-        excluded_by[i] = marks
-        active.append(i)
-
-    first = {i: True for i in active}
-    final: dict[int, tuple] = {}
-    while active:
-        fits = _round(data, active, used)
-        still: list[int] = []
-        for i in active:
-            d = data[i]
-            R, t, status, resid, loo = fits[i]
-            u = used[i]
-            if status != horn.OK:
-                which = "" if u.all() else f" (of the {int(u.sum())} points used)"
-                results[i] = UcsioError(f"cannot fit a frame{which}: {horn.REASONS[status]}",
-                                        file=d.path)
-                continue
-            n_used = int(u.sum())
-            if not first[i]:
-                if n_used < d.min_points or resid[u].max() <= d.threshold:
-                    final[i] = fits[i]
-                    continue
-            first[i] = False
-            if d.no_exclusion or n_used - 1 < 3:
-                final[i] = fits[i]
-                continue
-            lu = np.where(u, loo, np.nan)
-            if not np.isfinite(lu).any() or np.nanmax(lu) <= d.threshold:
-                final[i] = fits[i]
-                continue
-            worst = int(np.nanargmax(lu))
-            u[worst] = False
-            excluded_by[i][worst] = "auto"
-            still.append(i)
-        active = still
-
-    for i, (R, t, status, resid, loo) in final.items():
-        d = data[i]
-        u = used[i]
-        pred = d.laser @ R.T + t
-        dvec = d.robot - pred
-        loo_all = np.where(u, loo, resid)
-        r_used = resid[u]
-        n_used = int(u.sum())
-        pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
-        accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=d.threshold,
-                                      min_points=d.min_points, no_exclusion=d.no_exclusion,
-                                      n_auto=excluded_by[i].count("auto"))
-        points = [PointResult(name=d.names[k], residual=float(resid[k]),
-                              loo_residual=float(loo_all[k]), used=bool(u[k]),
-                              dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
-                              excluded_by=excluded_by[i][k], weight=float(d.weights[k]),
-                              line=None if d.lines is None else d.lines[k])
-                  for k in range(len(d.names))]
-        results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
-                              rms=float(np.sqrt(np.mean(r_used ** 2))),
-                              mean=float(np.mean(r_used)), max=float(np.max(r_used)),
-                              accepted=accepted, reason=reason, threshold=float(d.threshold),
-                              min_points=int(d.min_points), source=d.path,
-                              no_exclusion=bool(d.no_exclusion))
-    return results
 
 
 # ---------------------------------------------------------------- the run

@@ -116,17 +116,12 @@ class Solution:
 
 def leave_one_out(laser: np.ndarray, robot: np.ndarray, weights: np.ndarray) -> np.ndarray:
     """(m,) distance of each point to the frame fitted from the other m-1
-    points, as one batched Horn call on m sets; nan where those m-1 points
-    cannot determine a frame (or m - 1 < 3)."""
+    points (the round of ``solve_many``: one batched Horn call); nan where
+    those m-1 points cannot determine a frame (or m - 1 < 3)."""
     m = len(laser)
-    if m < 4:
-        return np.full(m, np.nan)
-    keep = ~np.eye(m, dtype=bool)                          # row i: all but i
-    idx = np.nonzero(keep)[1].reshape(m, m - 1)
-    fit = horn.horn_batch(laser[idx], robot[idx], weights[idx])
-    predicted = np.einsum("bij,bj->bi", fit.R, laser) + fit.t
-    loo = np.linalg.norm(robot - predicted, axis=1)
-    return np.where(fit.ok, loo, np.nan)
+    data = [Dataset(names=[str(k) for k in range(m)], laser=np.asarray(laser, dtype=float),
+                    robot=np.asarray(robot, dtype=float), weights=np.asarray(weights, dtype=float))]
+    return _round(data, [0], {0: np.ones(m, dtype=bool)})[0][4]
 
 
 def acceptance(n_used: int, max_residual: float, *, threshold: float, min_points: int,
@@ -161,7 +156,9 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
                  threshold: float = DEFAULT_THRESHOLD, min_points: int = DEFAULT_MIN_POINTS,
                  exclude: Iterable[str] = (), no_exclusion: bool = False,
                  lines: Sequence[int | None] | None = None) -> Solution:
-    """The method on points already in robot world (robot = flange * tcp)."""
+    """The method on points already in robot world (robot = flange * tcp):
+    a batch of one through ``solve_many``, so ``solve`` and ``batch`` share
+    one implementation of the exclusion rule."""
     laser = np.asarray(laser, dtype=float)
     robot = np.asarray(robot, dtype=float)
     n = len(names)
@@ -172,65 +169,182 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
         raise UcsioError(f"threshold must be positive, got {threshold}")
     if min_points < 3:
         raise UcsioError(f"min-points must be at least 3, got {min_points}")
+    result = solve_many([Dataset(names=list(names), laser=laser, robot=robot, weights=weights,
+                                 threshold=threshold, min_points=min_points,
+                                 exclude=tuple(exclude), no_exclusion=no_exclusion,
+                                 lines=None if lines is None else list(lines))])[0]
+    if isinstance(result, UcsioError):
+        raise result
+    return result
 
-    excluded_by: list[str | None] = [None] * n
-    by_name = {nm.casefold(): i for i, nm in enumerate(names)}
-    for name in exclude:
-        i = by_name.get(name.strip().casefold())
-        if i is None:
-            raise UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(names)})")
-        excluded_by[i] = "hand"
-    used = np.array([e is None for e in excluded_by])
 
-    def fit(mask):
-        try:
-            return horn.absolute_orientation(laser[mask], robot[mask], weights[mask])
-        except UcsioError as exc:
-            which = "" if mask.all() else f" (of the {int(mask.sum())} points used)"
-            raise UcsioError(f"cannot fit a frame{which}: {exc.message}") from None
+#: padded (sets x points x points) elements above which one round is split
+#: into Horn calls by point count (a 200-point dataset would otherwise pad
+#: every 8-point one to 200 x 200).
+PAD_BUDGET = 6_000_000
 
-    current = fit(used)
-    # --no-exclusion keeps every point (bar --exclude): no loop, and acceptance
-    # is by the point count only. With exclusion on, the loop below may end
-    # with points still over the threshold (3 left: no leave-one-out residual;
-    # no leave-one-out frame determined); ``acceptance`` then rejects the set.
-    if not no_exclusion:
-        while used.sum() - 1 >= 3:
-            ids = np.flatnonzero(used)
-            loo = leave_one_out(laser[ids], robot[ids], weights[ids])
-            if not np.isfinite(loo).any() or np.nanmax(loo) <= threshold:
+
+@dataclass
+class Dataset:
+    """One dataset for ``solve_many``: points already in robot world."""
+
+    names: list[str]
+    laser: np.ndarray            # (n, 3)
+    robot: np.ndarray            # (n, 3)
+    weights: np.ndarray          # (n,)
+    threshold: float = 1.5
+    min_points: int = 6
+    exclude: tuple[str, ...] = ()
+    no_exclusion: bool = False
+    lines: list[int] | None = None
+    path: str | None = None      # for error messages
+
+
+def _fit_sets(laser, robot, weights):
+    """Horn fits of (S, n, 3) sets: R (S,3,3), t (S,3), ok (S,)."""
+    fit = horn.horn_batch(laser, robot, weights)
+    return fit.R, fit.t, fit.ok, fit.status
+
+
+def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
+    """For every active dataset: the fit of its used points and the
+    leave-one-out fit of each point, in as few Horn calls as the padding
+    budget allows (one, normally). Returns per dataset (R, t, status,
+    residual (n,), loo (n,) with nan where undetermined or not used)."""
+    out: dict[int, tuple] = {}
+    sizes = {i: len(data[i].names) for i in active}
+    chunks: list[list[int]] = []
+    n_max = max(sizes.values())
+    if len(active) * (n_max + 1) * n_max * 3 <= PAD_BUDGET:
+        chunks = [active]
+    else:   # bucket by point count (powers of two), so padding stays bounded
+        buckets: dict[int, list[int]] = {}
+        for i in active:
+            buckets.setdefault(max(4, 1 << (sizes[i] - 1).bit_length()), []).append(i)
+        chunks = [buckets[k] for k in sorted(buckets)]
+    for chunk in chunks:
+        A = len(chunk)
+        n = max(sizes[i] for i in chunk)
+        L = np.zeros((A, n, 3))
+        Rb = np.zeros((A, n, 3))
+        W = np.zeros((A, n))
+        for a, i in enumerate(chunk):
+            d = data[i]
+            m = sizes[i]
+            L[a, :m] = d.laser
+            Rb[a, :m] = d.robot
+            W[a, :m] = d.weights * used[i]
+        # stack: A full fits, then A * n leave-one-out fits (point j's weight zeroed)
+        W_loo = (W[:, None, :] * (1.0 - np.eye(n))[None]).reshape(A * n, n)
+        L_all = np.concatenate([L, np.repeat(L, n, axis=0)])
+        R_all = np.concatenate([Rb, np.repeat(Rb, n, axis=0)])
+        W_all = np.concatenate([W, W_loo])
+        R, t, ok, status = _fit_sets(L_all, R_all, W_all)
+        Rf, tf, stf = R[:A], t[:A], status[:A]
+        pred = np.einsum("aij,anj->ani", Rf, L) + tf[:, None, :]
+        resid = np.linalg.norm(Rb - pred, axis=2)                       # (A, n)
+        Rl = R[A:].reshape(A, n, 3, 3)
+        tl = t[A:].reshape(A, n, 3)
+        okl = ok[A:].reshape(A, n)
+        pred_l = np.einsum("anij,anj->ani", Rl, L) + tl
+        loo = np.linalg.norm(Rb - pred_l, axis=2)
+        n_used = (W > 0).sum(axis=1)
+        loo = np.where(okl & (W > 0) & (n_used[:, None] >= 4), loo, np.nan)
+        for a, i in enumerate(chunk):
+            m = sizes[i]
+            out[i] = (Rf[a], tf[a], int(stf[a]), resid[a, :m], loo[a, :m])
+    return out
+
+
+def solve_many(data: Sequence[Dataset]) -> list:
+    """The method on many datasets at once (``solve_points`` is a batch of one).
+
+    Each round fits every still-active dataset and all its leave-one-out
+    subsets in one batched Horn call; the exclusion rule then runs per
+    dataset on those numbers. Rounds = 1 + the most points any dataset
+    excludes. Returns, per dataset, a ``ucsio.solve.Solution`` or the
+    ``UcsioError`` that ``solve_points`` would have raised."""
+    results: list = [None] * len(data)
+    used: dict[int, np.ndarray] = {}
+    excluded_by: dict[int, list] = {}
+    active: list[int] = []
+    for i, d in enumerate(data):
+        n = len(d.names)
+        marks: list[str | None] = [None] * n
+        by_name = {nm.casefold(): k for k, nm in enumerate(d.names)}
+        bad = None
+        for name in d.exclude:
+            k = by_name.get(name.strip().casefold())
+            if k is None:
+                bad = UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(d.names)})",
+                                 file=d.path)
                 break
-            worst = int(ids[np.nanargmax(loo)])
-            used[worst] = False
-            excluded_by[worst] = "auto"
-            current = fit(used)
-            if used.sum() < min_points:
-                break   # rejected whatever else happens
-            res = np.linalg.norm(robot[used] - current.apply(laser[used]), axis=1)
-            if res.max() <= threshold:
-                break
+            marks[k] = "hand"
+        if bad is not None:
+            results[i] = bad
+            continue
+        used[i] = np.array([m is None for m in marks])
+        excluded_by[i] = marks
+        active.append(i)
 
-    d = robot - current.apply(laser)
-    residual = np.linalg.norm(d, axis=1)
-    ids = np.flatnonzero(used)
-    loo_all = residual.copy()                                # unused: all used points are "the others"
-    loo_all[ids] = leave_one_out(laser[ids], robot[ids], weights[ids])
-    r_used = residual[used]
-    n_used = int(used.sum())
-    accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=threshold,
-                                  min_points=min_points, no_exclusion=no_exclusion,
-                                  n_auto=excluded_by.count("auto"))
-    pose = Pose.from_matrix(tuple(map(tuple, current.R.tolist())), current.t.tolist())
-    points = [PointResult(name=names[i], residual=float(residual[i]), loo_residual=float(loo_all[i]),
-                          used=bool(used[i]), dx=float(d[i, 0]), dy=float(d[i, 1]),
-                          dz=float(d[i, 2]), excluded_by=excluded_by[i], weight=float(weights[i]),
-                          line=None if lines is None else lines[i])
-              for i in range(n)]
-    return Solution(pose=pose, points=points, n_points=n, n_used=n_used,
-                    rms=float(np.sqrt(np.mean(r_used ** 2))), mean=float(np.mean(r_used)),
-                    max=float(np.max(r_used)), accepted=accepted, reason=reason,
-                    threshold=float(threshold), min_points=int(min_points),
-                    no_exclusion=bool(no_exclusion))
+    first = {i: True for i in active}
+    final: dict[int, tuple] = {}
+    while active:
+        fits = _round(data, active, used)
+        still: list[int] = []
+        for i in active:
+            d = data[i]
+            R, t, status, resid, loo = fits[i]
+            u = used[i]
+            if status != horn.OK:
+                which = "" if u.all() else f" (of the {int(u.sum())} points used)"
+                results[i] = UcsioError(f"cannot fit a frame{which}: {horn.REASONS[status]}",
+                                        file=d.path)
+                continue
+            n_used = int(u.sum())
+            if not first[i]:
+                if n_used < d.min_points or resid[u].max() <= d.threshold:
+                    final[i] = fits[i]
+                    continue
+            first[i] = False
+            if d.no_exclusion or n_used - 1 < 3:
+                final[i] = fits[i]
+                continue
+            lu = np.where(u, loo, np.nan)
+            if not np.isfinite(lu).any() or np.nanmax(lu) <= d.threshold:
+                final[i] = fits[i]
+                continue
+            worst = int(np.nanargmax(lu))
+            u[worst] = False
+            excluded_by[i][worst] = "auto"
+            still.append(i)
+        active = still
+
+    for i, (R, t, status, resid, loo) in final.items():
+        d = data[i]
+        u = used[i]
+        pred = d.laser @ R.T + t
+        dvec = d.robot - pred
+        loo_all = np.where(u, loo, resid)
+        r_used = resid[u]
+        n_used = int(u.sum())
+        pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
+        accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=d.threshold,
+                                      min_points=d.min_points, no_exclusion=d.no_exclusion,
+                                      n_auto=excluded_by[i].count("auto"))
+        points = [PointResult(name=d.names[k], residual=float(resid[k]),
+                              loo_residual=float(loo_all[k]), used=bool(u[k]),
+                              dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
+                              excluded_by=excluded_by[i][k], weight=float(d.weights[k]),
+                              line=None if d.lines is None else d.lines[k])
+                  for k in range(len(d.names))]
+        results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
+                              rms=float(np.sqrt(np.mean(r_used ** 2))),
+                              mean=float(np.mean(r_used)), max=float(np.max(r_used)),
+                              accepted=accepted, reason=reason, threshold=float(d.threshold),
+                              min_points=int(d.min_points), source=d.path,
+                              no_exclusion=bool(d.no_exclusion))
+    return results
 
 
 def solve(measurement, tcp=(0.0, 0.0, 0.0), *, threshold: float = DEFAULT_THRESHOLD,
