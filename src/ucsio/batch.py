@@ -39,7 +39,7 @@ import numpy as np
 from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
 from .files import atomic_write_text
-from .frames import Pose
+from .frames import Pose, tool_tcp
 from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
@@ -375,15 +375,7 @@ class _Cache:
 
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
     file, _, name = spec.rpartition(":")
-    frame = cache.controller(file).frame(name)
-    if frame.info.get("robhold") is False or frame.reference != "flange":
-        raise UcsioError(f"tool {frame.name} is not a robot-held tool (reference "
-                         f"{frame.reference!r}); the TCP must be given in flange coordinates",
-                         file=frame.file, line=frame.line)
-    if frame.pose is None:
-        raise UcsioError(f"tool {frame.name} has no complete value", file=frame.file,
-                         line=frame.line)
-    return frame.pose.t
+    return tool_tcp(cache.controller(file).frame(name))
 
 
 def _measured_in_parent(cf, frame, fit: Pose) -> Pose:

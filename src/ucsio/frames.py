@@ -125,3 +125,19 @@ class Frame(Value):
         for k, v in self.info.items():
             d[k] = v
         return d
+
+
+def tool_tcp(frame: Frame, what: str = "tool") -> tuple[float, float, float]:
+    """The TCP a robot-held tool gives a measurement: its translation in
+    flange coordinates. A stationary or external tool, or one without a
+    complete value, is refused (``what`` names the option in the message)."""
+    from .errors import UcsioError
+
+    if frame.info.get("robhold") is False or frame.reference != "flange":
+        raise UcsioError(f"{what}: {frame.name} is not a robot-held tool (reference "
+                         f"{frame.reference!r}); the TCP must be given in flange coordinates",
+                         file=frame.file, line=frame.line)
+    if frame.pose is None:
+        raise UcsioError(f"{what}: {frame.name} has no complete value", file=frame.file,
+                         line=frame.line)
+    return frame.pose.t

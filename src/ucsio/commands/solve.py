@@ -50,15 +50,8 @@ def tool_tcp(spec: str) -> tuple[float, float, float]:
     if not sep or not file or not name:
         raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
     from ..controller import load
-    frame = load(file).frame(name)
-    if frame.info.get("robhold") is False or frame.reference != "flange":
-        raise UcsioError(f"--tool: {frame.name} is not a robot-held tool (reference "
-                         f"{frame.reference!r}); the TCP must be given in flange coordinates",
-                         file=frame.file, line=frame.line)
-    if frame.pose is None:
-        raise UcsioError(f"--tool: {frame.name} has no complete value", file=frame.file,
-                         line=frame.line)
-    return frame.pose.t
+    from ..frames import tool_tcp as tcp_of
+    return tcp_of(load(file).frame(name), "--tool")
 
 
 def run(args) -> int:
