@@ -281,3 +281,25 @@ def test_check_whole_corpus_round_trips():
     res = run_cli("check", "--json", *paths)
     out = json.loads(res.stdout)
     assert all(f["round_trip"] for f in out["files"]) and len(out["files"]) == len(paths)
+
+
+def test_outline_and_grammar_share_routine_and_record_patterns():
+    """The outline scanner skips routines and records with the grammar's own
+    terminals: a LOCAL on its own line must not pass one path and fail the other."""
+    assert "(?P<routine>" + rapid._grammar_terminal("ROUTINE") + ")" in rapid._OUTLINE.pattern
+    assert "(?P<record>" + rapid._grammar_terminal("RECORD_DEF") + ")" in rapid._OUTLINE.pattern
+    text = ("MODULE m\n  LOCAL\n  PROC p()\n  ENDPROC\n  LOCAL\n  RECORD r\n    num a;\n  ENDRECORD\n"
+            "  PERS pose x:=[[1,2,3],[1,0,0,0]];\nENDMODULE\n")
+    for full in (False, True):
+        assert rapid.parse(Document(text.encode(), "l.mod"), full=full).frame("x").pose.t == (1, 2, 3)
+
+
+def test_check_round_trip_catches_a_span_off_by_one():
+    from ucsio.commands.check import round_trip
+    from ucsio.frames import Number
+    from ucsio.document import Span
+    cf = rapid.parse(Document((ABB / "two_modules_crcrlf.prg").read_bytes(), "x.prg"), full=True)
+    assert round_trip(cf)
+    n = cf.frames[0].numbers["x"]
+    cf.frames[0].numbers["x"] = Number(Span(n.span.start, n.span.end + 1), n.text, n.value)
+    assert not round_trip(cf)

@@ -20,7 +20,9 @@ import re
 
 from .controller import ControllerFile
 from .document import Document, Span
+from .errors import UcsioError
 from .frames import Frame, Number, Pose
+from .grammar import grammar_dir
 from .values import Value
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
@@ -30,7 +32,16 @@ NORM_TOLERANCE = 1e-5   # |sum q^2 - 1| above this is "not normalised" (NOrient)
 # -- the outline scanner -------------------------------------------------------
 # Strings and comments are matched before anything can end inside them.
 _STR = r'"[^"\r\n]*+"'
-_BODY = r'(?:[^"!eE]++|' + _STR + r'|![^\r\n]*+|\B[eE]|[eE](?!ND{end}\b))*+END{end}\b'
+
+
+def _grammar_terminal(name: str) -> str:
+    """A terminal's regex as grammars/rapid.lark writes it: the outline skips
+    routines and records with the grammar's own patterns, so the two paths
+    cannot drift apart."""
+    text = (grammar_dir() / "rapid.lark").read_text(encoding="utf-8")
+    return re.search(rf"^{name}(?:\.\d+)?: /(.*)/i$", text, re.M).group(1)
+
+
 _DECL_HEAD = r"(?:(?:LOCAL|TASK)\s+)?(?:PERS|CONST|VAR)\s+"
 _DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
 # Whitespace and comments are folded into the item after them: one match per
@@ -45,8 +56,8 @@ _OUTLINE = re.compile(
     r"|(?P<header>%%%[\s\S]*?%%%)"
     r"|(?P<module>MODULE\b[ \t]*\w*[ \t]*(?:\([^)\r\n]*\))?)"
     r"|(?P<endmodule>ENDMODULE\b)"
-    r"|(?P<routine>(?:LOCAL\s+)?(?:PROC|FUNC|TRAP)\b" + _BODY.format(end="(?:PROC|FUNC|TRAP)") + ")"
-    r"|(?P<record>(?:LOCAL\s+)?RECORD\b" + _BODY.format(end="RECORD") + ")"
+    r"|(?P<routine>" + _grammar_terminal("ROUTINE") + ")"
+    r"|(?P<record>" + _grammar_terminal("RECORD_DEF") + ")"
     r"|(?P<alias>ALIAS\b[^;]*;)"
     r"|(?P<eof>\Z))",
     re.IGNORECASE,
@@ -170,7 +181,7 @@ def _check_numbers(doc: Document) -> None:
 
 def _in_string_or_comment(text: str, pos: int) -> bool:
     """Strings and comments never span lines in RAPID: scan this line only."""
-    i = text.rfind("\n", 0, pos) + 1
+    i = max(text.rfind("\n", 0, pos), text.rfind("\r", 0, pos)) + 1
     in_string = False
     while i < pos:
         c = text[i]
@@ -500,17 +511,17 @@ def _start_of(v, default: int) -> int:
 def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor="abb")
     regions = outline(doc)  # structure errors read best from the outline
-    try:
-        if full:
-            _check_numbers(doc)
-            tree = parse_tree(doc, doc.text)
-        else:
-            compact = Compact(doc, regions)
+    if full:
+        _check_numbers(doc)
+        tree = parse_tree(doc, doc.text)
+    else:
+        compact = Compact(doc, regions)
+        try:
             tree = parse_tree(doc, compact.text, compact)
-            compact.remap(tree)
-    except Exception:
-        _check_numbers(doc)  # "bad number '1.2.3'" says more than Lark's token error
-        raise
+        except UcsioError:
+            _check_numbers(doc)  # "bad number '1.2.3'" says more than Lark's token error
+            raise
+        compact.remap(tree)
     decls = declarations(doc, tree)
     cf.extra["declarations"] = decls
     frames_from(cf, decls)
