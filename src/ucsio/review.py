@@ -24,7 +24,12 @@ from .errors import UcsioError
 from .frames import Frame, Pose
 from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
 
-DEVNULL = os.devnull
+
+
+def _is_devnull(path: str) -> bool:
+    """git passes the literal /dev/null for an added or removed file, on
+    every platform."""
+    return path in ("/dev/null", os.devnull) or (os.name == "nt" and path.lower() == "nul")
 
 
 def diff_frame(cf: ControllerFile, name: str, measured: Pose,
@@ -202,7 +207,7 @@ def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) ->
 def load_as(path: str, display: str) -> ControllerFile | None:
     """Parse ``path`` (a git temporary file, maybe /dev/null) as if it were
     ``display`` (the path in the repository: its suffix picks the vendor)."""
-    if path == DEVNULL or (os.name == "nt" and path.lower() == "nul"):
+    if _is_devnull(path):
         return None
     doc = Document.read(path)
     doc.path = display
@@ -260,11 +265,11 @@ def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None)
 
 def plain_diff(path: str, old_file: str, new_file: str) -> str:
     def lines(p):
-        if p == DEVNULL:
+        if _is_devnull(p):
             return []
         return _text_lines(Document(open(p, "rb").read(), p).text)
-    old_label = "/dev/null" if old_file == DEVNULL else f"a/{path}"
-    new_label = "/dev/null" if new_file == DEVNULL else f"b/{path}"
+    old_label = "/dev/null" if _is_devnull(old_file) else f"a/{path}"
+    new_label = "/dev/null" if _is_devnull(new_file) else f"b/{path}"
     out = difflib.unified_diff(lines(old_file), lines(new_file), old_label, new_label,
                                lineterm="")
     return "\n".join(out) + "\n"
