@@ -47,3 +47,9 @@ def test_binary_detection():
     assert looks_binary(bytes([0xFC, 0x30, 0x1D, 0x00]))
     assert not looks_binary(BOM + b"%%%\r\n  VERSION:1\r\n%%%\r\nMODULE x\r\nENDMODULE\r\n")
     assert not looks_binary("MODULE x ! \u00fc\nENDMODULE".encode("latin-1"))
+
+
+def test_cr_only_files_count_lines_at_cr():
+    doc = Document(b"MODULE m\r  PERS pose p:=[[1,2,3],[1,0,0,0]];\rENDMODULE\r")
+    assert doc.line_col(doc.text.index("PERS")) == (2, 3)
+    assert doc.line_col(doc.text.index("ENDMODULE")) == (3, 1)

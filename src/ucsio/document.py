@@ -77,14 +77,18 @@ class Document:
     # -- positions -------------------------------------------------------
     @property
     def line_starts(self) -> list[int]:
+        """Offsets where lines start. A line ends at LF (so CRLF and ABB's
+        CR CR LF are one ending each); a file with CR alone (classic Mac)
+        ends its lines at CR."""
         if self._line_starts is None:
             starts = [0]
             text = self.text
+            eol = "\n" if "\n" in text or "\r" not in text else "\r"
             find = text.find
-            i = find("\n")
+            i = find(eol)
             while i != -1:
                 starts.append(i + 1)
-                i = find("\n", i + 1)
+                i = find(eol, i + 1)
             self._line_starts = starts
         return self._line_starts
 
@@ -143,10 +147,6 @@ class Document:
     def edited_bytes(self, edits: list[Edit]) -> bytes:
         return self.encode(self.apply(edits))
 
-    def newline(self) -> str:
-        """The line ending this file mostly uses (for the rare inserted line)."""
-        crlf = self.text.count("\r\n")
-        return "\r\n" if crlf * 2 > self.text.count("\n") else "\n"
 
 
 def looks_binary(raw: bytes, limit: int = 4096) -> bool:

@@ -108,10 +108,6 @@ class Frame(Value):
     def __repr__(self) -> str:
         return f"Frame({self.name!r}, {self.vendor}, {self.type}, {self.pose!r}, {self.file}:{self.line})"
 
-    @property
-    def names(self) -> list[str]:
-        return [self.name] + ([self.label] if self.label else [])
-
     def as_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"name": self.name, "file": self.file, "line": self.line,
                              "vendor": self.vendor, "type": self.type,
