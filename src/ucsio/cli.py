@@ -40,12 +40,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name, help_text in COMMANDS.items():
-        try:
-            module = importlib.import_module(f"ucsio.commands.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"ucsio.commands.{name}":
-                raise
-            continue  # not built yet
+        module = importlib.import_module(f"ucsio.commands.{name}")
         p = sub.add_parser(name, help=help_text, description=module.__doc__,
                            formatter_class=argparse.RawDescriptionHelpFormatter)
         _accept_negative_lists(p)

@@ -85,16 +85,10 @@ def run(args) -> int:
             bar.close()
 
     if args.csv:
-        try:
-            write_csv(result.entries, args.csv)
-        except OSError as exc:
-            raise UcsioError(f"cannot write {args.csv}: {exc.strerror or exc}") from None
+        write_csv(result.entries, args.csv)  # atomic; errors: one UcsioError
     if args.report:
         from ..report import write_report
-        try:
-            write_report(result, args.report)
-        except OSError as exc:
-            raise UcsioError(f"cannot write {args.report}: {exc.strerror or exc}") from None
+        write_report(result, args.report)
 
     if args.json:
         emit_json(result.as_dict())

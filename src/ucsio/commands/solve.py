@@ -87,10 +87,7 @@ def run(args) -> int:
         buf = io.StringIO()
         json.dump(_clean(result), buf, indent=2, ensure_ascii=False)
         buf.write("\n")
-        try:
-            atomic_write_text(args.output, buf.getvalue())
-        except OSError as exc:
-            raise UcsioError(f"cannot write {args.output}: {exc.strerror or exc}") from None
+        atomic_write_text(args.output, buf.getvalue())  # errors: one UcsioError
 
     if args.json:
         emit_json(result)
