@@ -58,8 +58,6 @@ START = ("file", "lines")
 # kinematic, MACHINE_FRAME_DAT); the type only gives the role.
 TOOL_ROLES = {"#NONE": "tool", "#BASE": "tool", "#TCP": "workpiece"}
 BASE_ROLES = {"#NONE": "base", "#BASE": "base", "#TCP": "external_tcp"}
-TOOL_REFERENCE = {None: "flange", "#NONE": "flange", "#BASE": "flange", "#TCP": "flange"}
-BASE_REFERENCE = {None: "world", "#NONE": "world", "#BASE": "world", "#TCP": "world"}
 LABEL_MAX = 24                      # TOOL_NAME/BASE_NAME are CHAR [n,24]
 REAL_MAX = 3.4028235e38             # KRL REAL is float32
 COMPONENTS = ("x", "y", "z", "a", "b", "c")
@@ -722,12 +720,13 @@ class _Interpreter:
                                             f"{', '.join(sorted(roles))}")
         fr.info[kind.lower() + "_type"] = tv
         fr.info["role"] = roles.get(tv, "unknown") if tv is not None else roles["#NONE"]
+        known = tv is None or tv in roles   # an unknown type value: reference unknown too
         if kind == "TOOL":
-            fr.reference = TOOL_REFERENCE.get(tv, "unknown")
+            fr.reference = "flange" if known else "unknown"
             if n in loads:
                 fr.info["load"] = dict(loads[n])
             return
-        fr.reference = BASE_REFERENCE.get(tv, "unknown")
+        fr.reference = "world" if known else "unknown"
         mach = mframes.get(n)
         if mach and mach["index"] and fr.reference == "world":
             fr.reference = "machine"
@@ -737,8 +736,7 @@ class _Interpreter:
         if fr.reference != "world":
             where = {"machine": f"external kinematic {mach and (mach['parent'] or mach['index'])}"
                                 f" (MACHINE_FRAME_DAT[{n}].MACH_DEF_INDEX "
-                                f"{mach and mach['index']})",
-                     "flange": "the flange"}.get(fr.reference, "an unknown frame")
+                                f"{mach and mach['index']})"}.get(fr.reference, "an unknown frame")
             self.lint(self._line_offset(fr), "base-not-world",
                       f"{fr.name} is relative to {where}, not to world")
 
