@@ -49,6 +49,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     from ..controller import load
     from ..diff import DEFAULT_TOLERANCE
     from ..measurement import read_measurement
+    from ..frames import tool_tcp
     from ..patch import patch_frame, save
     from ..review import diff_frame
     from ..solve import solve
@@ -57,7 +58,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     controller = root / cell.controller
     cf = load(controller)
     tool = cf.frame(cell.tool)
-    tcp = tool.pose.t
+    tcp = tool_tcp(tool)
     sol = solve(read_measurement(root / cell.measurement), tcp)
     sim = cf.frame(cell.frame)
     d = diff_frame(cf, cell.frame, sol.pose, tol)
