@@ -28,15 +28,15 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from . import horn
+from . import defaults, horn
 from .errors import UcsioError
 from .frames import Pose
 from .solution import load_solution, pose_from_json
 
-DEFAULT_THRESHOLD = 1.5
-DEFAULT_MIN_POINTS = 6
-DEFAULT_SIGMA_LASER = 0.015
-DEFAULT_SIGMA_ROBOT = 0.05
+DEFAULT_THRESHOLD = defaults.THRESHOLD
+DEFAULT_MIN_POINTS = defaults.MIN_POINTS
+DEFAULT_SIGMA_LASER = defaults.SIGMA_LASER
+DEFAULT_SIGMA_ROBOT = defaults.SIGMA_ROBOT
 
 
 @dataclass
@@ -192,8 +192,8 @@ class Dataset:
     laser: np.ndarray            # (n, 3)
     robot: np.ndarray            # (n, 3)
     weights: np.ndarray          # (n,)
-    threshold: float = 1.5
-    min_points: int = 6
+    threshold: float = DEFAULT_THRESHOLD
+    min_points: int = DEFAULT_MIN_POINTS
     exclude: tuple[str, ...] = ()
     no_exclusion: bool = False
     lines: list[int] | None = None

@@ -5,6 +5,7 @@ is written unless --out DIR is given (patched copies go there; the shipped
 files are never changed)."""
 from __future__ import annotations
 
+from .. import defaults
 from ..output import emit_json, fmt, table
 
 
@@ -57,7 +58,7 @@ def print_cell(cell: dict) -> None:
         used = "yes" if p["used"] else f"EXCLUDED ({p.get('excluded_by') or 'auto'})"
         rows.append([p["name"], fmt(p["residual"]), fmt(loo), used])
     print(indent(table(["point", "residual", "leave-one-out", "used"], rows, right={1, 2})))
-    threshold = s.get("settings", {}).get("threshold", 1.5)
+    threshold = s.get("settings", {}).get("threshold", defaults.THRESHOLD)
     print(f"   {s['n_used']} of {s['n_points']} points used, rms {s['rms']:.3f} mm, "
           f"max {s['max']:.3f} mm (threshold {threshold:g} mm): "
           + ("accepted" if s["accepted"] else "REJECTED: measure again"))
@@ -71,7 +72,7 @@ def print_cell(cell: dict) -> None:
     print(indent(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6})))
     print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
           f"group {d['group']}, {'PASS' if d['pass'] else 'FAIL'} "
-          f"(tolerance {d.get('tolerance', 100.0):g} mm)")
+          f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
     print()
     print("3. patch preview (only the frame's numbers change)")
     print(indent(cell["patch"]["diff"].rstrip("\n")))

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import os
 
+from .. import defaults
 from ..errors import UcsioError
 from . import add_uncertainty_options
 from ..files import atomic_write_text
@@ -19,10 +20,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                      help="reflector position in flange coordinates, mm (default 0,0,0)")
     src.add_argument("--tool", metavar="FILE:NAME", default=None,
                      help="take the TCP from a robot-held tool in a controller file")
-    p.add_argument("--threshold", type=float, default=1.5, metavar="MM",
-                   help="leave-one-out residual above which a point is excluded (default 1.5)")
-    p.add_argument("--min-points", type=int, default=6, metavar="N",
-                   help="fewer used points than this rejects the dataset (default 6)")
+    p.add_argument("--threshold", type=float, default=defaults.THRESHOLD, metavar="MM",
+                   help="leave-one-out residual above which a point is excluded "
+                        f"(default {defaults.THRESHOLD})")
+    p.add_argument("--min-points", type=int, default=defaults.MIN_POINTS, metavar="N",
+                   help=f"fewer used points than this rejects the dataset (default {defaults.MIN_POINTS})")
     p.add_argument("--exclude", action="append", default=[], metavar="NAME",
                    help="drop this point by hand (repeatable)")
     p.add_argument("--no-exclusion", action="store_true", help="keep every point")
