@@ -279,13 +279,11 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
     frame's reference, or None when it does (directly, or for an object frame
     through its user frame: measured_in_parent)."""
     ref = frame.reference
-    if frame.vendor == "kuka" and frame.type == "BASE_DATA" and \
-            str(frame.info.get("base_type") or "").upper() == "#TCP":
-        # Read as "robot-held workpiece, relative to the flange" (FORMATS 2.7)
-        # or as an external TCP (krl.py's reading of the corpus): either way
-        # not a plain base, so a measured UCS does not belong there unasked.
-        return ("BASE_TYPE #TCP: not a plain base (a robot-held workpiece, or an "
-                "external TCP): a measured fixture frame does not belong here")
+    if frame.info.get("role") == "external_tcp":
+        # KUKA BASE_TYPE #TCP: a fixed tool kept in the base table (krl.py):
+        # in world, but not a fixture, so a measured UCS does not belong there.
+        return ("BASE_TYPE #TCP: an external (fixed) TCP, not a plain base: a measured "
+                "fixture frame does not belong here")
     if ref == "world":
         return None
     if frame.vendor == "abb" and frame.info.get("component") == "oframe":
@@ -295,8 +293,6 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
         return ("the object frame is relative to a user frame that is not a fixed frame "
                 "in robot world; patch the user frame instead")
     if ref == "flange":
-        if frame.vendor == "kuka" and frame.type == "BASE_DATA":
-            return "this base is held by the robot (relative to the flange)"
         return "this tool is held by the robot: its frame is relative to the flange, not world"
     if ref == "machine":
         return "this base is on an external kinematic (MACHINE_FRAME_DAT): not relative to world"
@@ -306,8 +302,12 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
     return f"this frame is relative to {ref!r}, not robot world"
 
 
-def shared_declarations(frame: Frame, warnings: list[str] | None = None) -> list[dict]:
-    """Other modules in the same folder that declare the same RAPID PERS."""
+def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
+                        load=None) -> list[dict]:
+    """Other modules in the same folder that declare the same RAPID PERS.
+    ``load(path)``: how a sibling module is read (default
+    ``ucsio.controller.load``; ``batch`` passes its cache, so a folder's
+    modules are parsed once per run, not once per patched frame)."""
     storage = str(frame.info.get("storage") or "").upper()
     if frame.vendor != "abb" or "PERS" not in storage.split() or "LOCAL" in storage.split():
         return []
@@ -317,7 +317,8 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None) -> list
                           if p.suffix.lower() in ABB_SUFFIXES and p.is_file())
     except OSError:
         return []
-    from .controller import load
+    if load is None:
+        from .controller import load
     found = []
     key = frame.name.casefold()
     for p in siblings:
@@ -413,13 +414,20 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
 
 def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,
                 force: bool = False, oframe: bool = False,
-                check_siblings: bool = True) -> PatchResult:
+                check_siblings: bool = True, verify: bool = True,
+                load=None) -> PatchResult:
     """Plan the patch of frame ``name`` in ``cf`` to ``pose``.
 
     ``measured``: the pose is a measured solution (the UCS in robot world), so
     the frame's reference must be world unless ``force``. With ``measured``
     False (``--set``) the values are taken as given in the frame's own
-    reference. Refusals raise UcsioError; nothing is written here."""
+    reference. Refusals raise UcsioError; nothing is written here.
+
+    ``verify``: parse the new bytes back (``verify``); a caller that applies
+    several patches to one file and verifies the combined bytes itself
+    (``verify(result, parsed=...)``, as ``batch`` does) passes False.
+    ``load``: how sibling modules are read for the shared-PERS check
+    (``shared_declarations``)."""
     frame = cf.frame(resolve_name(name, oframe))
     where = {"file": frame.file, "line": frame.line}
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
@@ -439,7 +447,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
                                  "frame (--force to write it anyway)", **where)
             warnings.append(f"{frame.name}: {why} (written anyway: --force)")
     if check_siblings:
-        shared = shared_declarations(frame, warnings)
+        shared = shared_declarations(frame, warnings, load=load)
         if shared:
             names = "; ".join(f"{Path(s['file']).name}:{s['line']} "
                               f"({'same value' if s['same_value'] else 'different value'})"
@@ -454,22 +462,38 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     new_bytes = doc.edited_bytes(edits_for(frame, changes))
     result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
                          new_bytes=new_bytes, changes=changes, warnings=warnings)
-    verify(result)
+    if verify:
+        globals()["verify"](result)     # the function (the keyword shadows its name)
     return result
 
 
-def verify(result: PatchResult) -> None:
+def reads_back(frame: Frame | None, pose: Pose) -> bool:
+    """Whether ``frame``, parsed from patched text, gives ``pose`` within the
+    written precision. Only components that were kept (unchanged at the
+    written precision) may differ, and by at most half a step."""
+    p = frame.pose if frame is not None else None
+    return (p is not None
+            and all(abs(a - b) <= READBACK_TRANS for a, b in zip(p.t, pose.t))
+            and rot.quat_angle(p.q, pose.q) <= READBACK_ANGLE_DEG)
+
+
+def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None:
     """Parse the new bytes again: the frame must read back as the target pose
-    within the written precision, and nothing outside its spans may move."""
+    within the written precision (``reads_back``), and nothing outside its
+    spans may move. ``parsed``: text with this patch applied, already parsed
+    (a copy of the file with several frames patched, parsed once for all of
+    them); then the frame is looked up there instead of parsing
+    ``result.new_bytes``."""
     doc = result.document
     frame = result.frame
     if not result.changes:
         if result.new_bytes != doc.raw:  # pragma: no cover - defensive
             raise UcsioError("internal error: an empty patch changed bytes", file=doc.path)
         return
-    new_doc = Document(result.new_bytes, doc.path)
     try:
-        again = parse(new_doc).frame(frame.name)
+        if parsed is None:
+            parsed = parse(Document(result.new_bytes, doc.path))
+        again = parsed.frame(frame.name)
     except UcsioError as exc:
         raise UcsioError(f"internal error: the patched text does not parse back: {exc}",
                          file=doc.path) from None
@@ -477,10 +501,7 @@ def verify(result: PatchResult) -> None:
     if p is None:
         raise UcsioError("internal error: the patched frame has no value", file=doc.path)
     target = result.pose
-    if (any(abs(a - b) > READBACK_TRANS for a, b in zip(p.t, target.t))
-            or rot.quat_angle(p.q, target.q) > READBACK_ANGLE_DEG):
-        # Only components that were kept (unchanged at the written precision)
-        # may differ, and by at most half a step.
+    if not reads_back(again, target):
         raise UcsioError(f"internal error: {frame.name} reads back as {p.as_dict()}, "
                          f"not {target.as_dict()}", file=doc.path)
     if frame.vendor == "abb":
