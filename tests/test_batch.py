@@ -727,3 +727,184 @@ def test_unjudged_three_point_set_is_rejected_as_solve_rejects_it(tmp_path, caps
     assert code == 1 and e["accepted"] is False and data["summary"]["rejected"] == 1
     code, out, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--min-points", "3", "--json"], capsys)
     assert code == 1 and json.loads(out)["accepted"] is False
+
+
+# ---------------------------------------------------------------- rejection reasons
+
+_THREE = ("point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c\n"
+          "A,0,0,0,1000,0,0,0,0,0\nB,500,0,0,1500,0,0,0,0,0\nC,0,500,0,1000,520,0,0,0,0\n")
+
+
+def _two_rejections(tmp_path):
+    """'three': 3 points, residuals over the threshold, nothing to single out
+    (n_used 3 >= min_points 3); 'few': 5 good points, 6 needed."""
+    _abb_cell(tmp_path)
+    (tmp_path / "three.csv").write_text(_THREE)
+    (tmp_path / "cell.mod").write_text(
+        'MODULE cell\n  PERS wobjdata w:=[FALSE,TRUE,"",[[1000,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
+        "ENDMODULE\n")
+    few = (tmp_path / "m.csv").read_text().splitlines()[:6]          # header + 5 points
+    (tmp_path / "few.csv").write_text("\n".join(few) + "\n")
+    (tmp_path / "m.toml").write_text(
+        "[[entry]]\nname = 'three'\nmeasurement = 'three.csv'\ncontroller = 'cell.mod'\n"
+        "frame = 'w'\nmin_points = 3\n"
+        "[[entry]]\nname = 'few'\nmeasurement = 'few.csv'\ncontroller = 'cell.mod'\nframe = 'w'\n")
+
+
+def test_rejection_reason_in_json_csv_and_report(tmp_path, capsys):
+    """Each rejected entry says why: the solver's reason, not a guess that
+    assumes too few points (here 'three' has 3 of 3 needed points)."""
+    _two_rejections(tmp_path)
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json", "--csv",
+                            str(tmp_path / "o.csv"), "--report", str(tmp_path / "o.html")], capsys)
+    three, few = json.loads(out)["entries"]
+    assert code == 1 and three["status"] == few["status"] == "rejected"
+    assert three["reason"].startswith("residuals over the threshold and no point can be singled out")
+    assert "with 3 points used" in three["reason"]
+    assert few["reason"] == "too few points: 5 used, at least 6 needed"
+
+    with (tmp_path / "o.csv").open(encoding="utf-8") as fh:
+        header = next(csv.reader(fh))
+    assert header[-1] == "reason"
+    rows = list(csv.DictReader((tmp_path / "o.csv").open(encoding="utf-8")))
+    assert [r["reason"] for r in rows] == [three["reason"], few["reason"]]
+
+    html = (tmp_path / "o.html").read_text(encoding="utf-8")
+    assert "points left, at least" not in html          # the old, wrong wording
+    assert "REJECTED: residuals over the threshold and no point can be singled out" in html
+    assert "REJECTED: too few points: 5 used, at least 6 needed; measure again" in html
+    assert html.count('data-reason="') == 2
+
+    # an accepted entry has no reason: null in the JSON, empty in the CSV
+    _abb_cell(tmp_path)
+    (tmp_path / "m.toml").write_text(_GOOD)
+    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
+    assert code == 0 and json.loads(out)["entries"][0]["reason"] is None
+
+
+def test_rejected_solution_file_gives_its_reason(tmp_path, capsys):
+    """diff/patch refuse a rejected SOLUTION.json with the reason it holds;
+    a file without one gets the generic wording."""
+    from ucsio.errors import UcsioError
+    from ucsio.solution import load_solution, pose_from_json
+
+    (tmp_path / "three.csv").write_text(_THREE)
+    sol = tmp_path / "s.json"
+    code, _, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--min-points", "3",
+                          "-o", str(sol)], capsys)
+    data = json.loads(sol.read_text())
+    assert code == 1 and data["accepted"] is False and data["reason"]
+    with pytest.raises(UcsioError) as exc:
+        load_solution(sol)
+    assert "residuals over the threshold and no point can be singled out" in str(exc.value)
+    assert "too few points" not in str(exc.value) and str(sol) in str(exc.value)
+    del data["reason"]
+    with pytest.raises(UcsioError, match=r"^the dataset was rejected; measure again$"):
+        pose_from_json(data)
+    data["reason"] = "too few points: 4 used, at least 6 needed"
+    with pytest.raises(UcsioError, match="rejected: too few points: 4 used"):
+        pose_from_json(data)
+    assert pose_from_json(data, allow_rejected=True).x == data["frame"]["x"]
+
+
+# ---------------------------------------------------------------- not UTF-8
+
+def test_manifest_not_utf8_is_exit_2(tmp_path, capsys):
+    m = tmp_path / "m.toml"
+    m.write_bytes(b"[[entry]]\nname = 'Stra\xdfe'\nmeasurement = 'm.csv'\n")     # cp1252
+    with pytest.raises(B.UcsioError) as exc:
+        B.read_manifest(m)
+    assert exc.value.file == str(m) and exc.value.line == 2
+    assert exc.value.message.startswith("not UTF-8 text: byte 0xdf")
+    code, out, err = run_cli(["batch", str(m)], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1
+    assert f"{m}:2: not UTF-8 text" in err and "Traceback" not in err
+
+
+def test_solution_not_utf8_is_exit_2(tmp_path, capsys):
+    from ucsio.solution import load_solution
+
+    _abb_cell(tmp_path)
+    s = tmp_path / "s.json"
+    s.write_bytes(b'\xef\xbb\xbf{"note": "caf\xe9",\n "x": 1, "y": 2, "z": 3, "a": 0, "b": 0, "c": 0}')
+    with pytest.raises(B.UcsioError) as exc:
+        load_solution(s)
+    assert exc.value.file == str(s) and exc.value.line == 1
+    assert exc.value.message.startswith("not UTF-8 text: byte 0xe9")
+    code, out, err = run_cli(["diff", str(tmp_path / "cell.mod"), "--frame", "wobj1",
+                              "--measured", str(s)], capsys)
+    assert code == 2 and f"{s}:1: not UTF-8 text" in err and "Traceback" not in err
+    s.write_bytes(b'\xef\xbb\xbf{"x": 1, "y": 2, "z": 3, "a": 0, "b": 0, "c": 0}')   # a BOM is fine
+    assert load_solution(s).x == 1.0
+
+
+# ---------------------------------------------------------------- --patch-dir: parsing, races
+
+def _two_frames_one_file(tmp_path):
+    """cell.mod with two passing entries (the user frame and the object
+    frame of wobj1) and an unrelated sibling module in the folder."""
+    _abb_cell(tmp_path)
+    (tmp_path / "other.mod").write_text(
+        'MODULE other\n  PERS wobjdata wobj9 := [FALSE,TRUE,"",[[0,0,0],[1,0,0,0]],'
+        "[[0,0,0],[1,0,0,0]]];\nENDMODULE\n")
+    (tmp_path / "m.toml").write_text(
+        _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
+        "frame = 'wobj1'\n")
+
+
+def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
+    """The source and its sibling modules are parsed once (through the run's
+    cache), and the combined copy once: no per-entry sibling or read-back parse."""
+    import ucsio.rapid
+
+    _two_frames_one_file(tmp_path)
+    parsed = []
+    real = ucsio.rapid.parse
+    monkeypatch.setattr(ucsio.rapid, "parse",
+                        lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
+    res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), patch_dir=str(tmp_path / "out"))
+    assert all(r.passed and r.patch_error is None for r in res.entries)
+    copy = tmp_path / "out" / "cell.mod"
+    assert {r.patched for r in res.entries} == {str(copy)}
+    assert sorted(parsed) == ["cell.mod", "cell.mod", "other.mod"]   # source, combined copy; sibling
+    assert res.timings["controllers"] == 2
+    from ucsio.controller import load
+    again = load(copy)
+    for r in res.entries:
+        assert again.frame(r.entry.frame).pose is not None
+    # the run keeps its temporary state to itself
+    assert all(not k.startswith("_") for r in res.entries for k in vars(r))
+
+
+def test_patch_dir_combined_copy_is_verified(tmp_path, monkeypatch):
+    """patch_frame no longer parses each frame's copy: the combined copy's
+    read-back (patch.reads_back, through patch.verify) still guards the write."""
+    import ucsio.patch as patcher
+
+    _two_frames_one_file(tmp_path)
+    monkeypatch.setattr(patcher, "reads_back", lambda frame, pose: False)
+    res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), patch_dir=str(tmp_path / "out"))
+    assert all(r.patched is None and "reads back as" in r.patch_error for r in res.entries)
+    assert not (tmp_path / "out" / "cell.mod").exists()
+
+
+def test_patch_dir_refuses_a_source_changed_during_the_run(tmp_path, monkeypatch):
+    """The copy holds the patched bytes of the source as it was read: if the
+    source changed on disk since, the copy is not written (patch error)."""
+    import ucsio.patch as patcher
+
+    _two_frames_one_file(tmp_path)
+    src = tmp_path / "cell.mod"
+    edited = src.read_bytes().replace(b"MODULE cell", b"MODULE cell2", 1)
+    real = patcher.atomic_write
+
+    def touch_then_write(path, data, *a, **k):
+        src.write_bytes(edited)           # someone saves the source meanwhile
+        return real(path, data, *a, **k)
+    monkeypatch.setattr(patcher, "atomic_write", touch_then_write)
+    res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), patch_dir=str(tmp_path / "out"))
+    assert all(r.passed and r.patched is None for r in res.entries)
+    assert all("changed on disk since it was read" in r.patch_error for r in res.entries)
+    assert not (tmp_path / "out" / "cell.mod").exists()
+    assert not [p for p in (tmp_path / "out").iterdir() if p.name.endswith(".ucsio-tmp")]
+    assert src.read_bytes() == edited and res.summary["patch_errors"] == 2

@@ -225,3 +225,27 @@ def test_uncertainty_axes_and_patch_error_in_report():
     assert "uncertainty (std, user frame axes) x 0.0100" in html
     assert 'id="patch-errors"' in html and "patched copy NOT written: wobj1: also declared" in html
     assert 'data-key="patch_errors" data-value="1"' in html and "not patched</span>" in html
+
+
+def test_rejected_entry_shows_its_reason():
+    """REJECTED says why, as the solver did: n_used >= min_points can be
+    rejected too (residuals over the threshold, no point to single out). A
+    JSON without a reason (older, hand-edited) gets a generic line, shown
+    even when the entry has no points."""
+    from ucsio.report import render_report
+    why = ("residuals over the threshold and no point can be singled out: max 7.100 mm > 1.5 mm "
+           "with 3 points used (the leave-one-out residual needs at least 4 points)")
+    entry = {"name": "three", "status": "rejected", "accepted": False, "e": 2.5, "pass": False,
+             "reason": why, "n_points": 3, "n_used": 3, "min_points": 3, "threshold": 1.5,
+             "points": [{"name": f"P{i}", "residual": 3.0, "loo_residual": None, "used": True,
+                         "excluded_by": None} for i in range(3)]}
+    html = render_report(_one(entry, rejected=1, errors=0))
+    assert "only 3 points left" not in html and "at least 3 needed" not in html
+    shown = why.replace(">", "&gt;")
+    assert f"REJECTED: {shown}; measure again" in html
+    assert f'data-reason="{shown}"' in html and f'title="{shown}"' in html
+    bare = {"name": "old", "status": "rejected", "accepted": False}
+    html = render_report(_one(bare, rejected=1, errors=0))
+    assert "REJECTED: the dataset was rejected; measure again" in html
+    entry["reason"] = "<b>x</b>"
+    assert "REJECTED: &lt;b&gt;x&lt;/b&gt;; measure again" in render_report(_one(entry))

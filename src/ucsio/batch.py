@@ -36,6 +36,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
+from .defaults import MIN_POINTS, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
 from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
 from .files import atomic_write_text
@@ -62,8 +63,8 @@ class Entry:
     frame: str | None
     tcp: tuple[float, float, float] | None
     tool: str | None                  # "FILE:NAME", FILE resolved
-    threshold: float = 1.5
-    min_points: int = 6
+    threshold: float = THRESHOLD
+    min_points: int = MIN_POINTS
     tolerance: float = DEFAULT_TOLERANCE
     exclude: tuple[str, ...] = ()
     no_exclusion: bool = False
@@ -160,8 +161,8 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
         ex = [ex]
     return Entry(index=i, name=name, measurement=_resolve(base, merged["measurement"]),
                  controller=_resolve(base, merged["controller"]), frame=merged["frame"],
-                 tcp=tcp, tool=tool, threshold=float(merged.get("threshold", 1.5)),
-                 min_points=merged.get("min_points", 6),
+                 tcp=tcp, tool=tool, threshold=float(merged.get("threshold", THRESHOLD)),
+                 min_points=merged.get("min_points", MIN_POINTS),
                  tolerance=float(merged.get("tolerance", DEFAULT_TOLERANCE)),
                  exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False))
 
@@ -184,16 +185,24 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     """Read and check a batch manifest.
 
     UcsioError (exit 2) for anything wrong with the manifest as a whole: not
-    readable, not TOML, unknown top-level keys, a bad [defaults], no entries,
-    an entry without a name or a duplicate name. A problem inside one named
+    readable, not UTF-8, not TOML, unknown top-level keys, a bad [defaults],
+    no entries, an entry without a name or a duplicate name. A problem inside one named
     [[entry]] (an unknown key, a missing frame, a mistyped value) only makes
     that entry fail: its ``problem``, reported as its error by run_batch."""
     path = os.fspath(path)
     try:
         with open(path, "rb") as fh:
-            data = tomllib.load(fh)
+            raw = fh.read()
     except OSError as exc:
         raise UcsioError(f"cannot read manifest: {exc.strerror or exc}", file=path) from None
+    try:
+        text = raw.decode("utf-8")      # TOML is UTF-8 (tomllib would raise UnicodeDecodeError)
+    except UnicodeDecodeError as exc:
+        raise UcsioError(f"not UTF-8 text: byte 0x{raw[exc.start]:02x} at offset {exc.start} "
+                         "cannot be decoded (a TOML manifest is UTF-8; save it as UTF-8)",
+                         file=path, line=raw[:exc.start].count(b"\n") + 1) from None
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise UcsioError(f"not valid TOML: {exc}", file=path) from None
     base = Path(path).resolve().parent
@@ -267,6 +276,16 @@ class EntryResult:
         return "pass" if self.passed else "over tolerance"
 
     @property
+    def reason(self) -> str | None:
+        """Why the entry's dataset was rejected (the solver's ``reason``: too
+        few points, or residuals over the threshold with no point to single
+        out); None when it was accepted or never solved."""
+        s = self.solution
+        if s is None or s.accepted:
+            return None
+        return getattr(s, "reason", None) or "the dataset was rejected"
+
+    @property
     def e(self) -> float | None:
         return None if self.solution is None or self.error else self.solution.mean
 
@@ -283,6 +302,7 @@ class EntryResult:
         d: dict[str, Any] = {
             "name": en.name, "status": self.status, "accepted": self.accepted,
             "e": self.e, "dt_mean": self.dt_mean, "group": self.group, "pass": self.passed,
+            "reason": self.reason,
             "frame": self.measured.as_dict() if self.measured is not None else None,
         }
         if self.error is not None:
@@ -390,11 +410,12 @@ def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
     return measured_in_parent(cf, frame, fit)
 
 
-def _entry_uncertainty(r: EntryResult, cf, frame, n: int, sigma_laser: float,
+def _entry_uncertainty(r: EntryResult, meas, cf, frame, n: int, sigma_laser: float,
                        sigma_robot: float, seed: int) -> None:
-    """The Monte Carlo uncertainty of an accepted entry, in the axes of its
-    ``frame``: robot world, or for an ABB object frame its user frame. There
-    the robot points are expressed in the user frame (uframe^-1, the map
+    """The Monte Carlo uncertainty of an accepted entry (``meas``: its
+    measurement), in the axes of its ``frame``: robot world, or for an ABB
+    object frame its user frame. There the robot points are expressed in the
+    user frame (uframe^-1, the map
     measured_in_parent applies to the fit) before the perturbed fits, so
     every sample pose, and with them std and ci95, are in the same
     coordinates as the frame; the noise is isotropic, so its model is the
@@ -403,7 +424,6 @@ def _entry_uncertainty(r: EntryResult, cf, frame, n: int, sigma_laser: float,
     from .solve import solution_uncertainty, uncertainty
 
     sol = r.solution
-    meas = r._meas                                  # type: ignore[attr-defined]
     ident = Pose.from_quat(0.0, 0.0, 0.0, (1.0, 0.0, 0.0, 0.0))
     to_parent = measured_in_parent(cf, frame, ident)
     if to_parent is ident:                          # the frame is in robot world
@@ -419,8 +439,8 @@ def _entry_uncertainty(r: EntryResult, cf, frame, n: int, sigma_laser: float,
     r.uncertainty_axes = "uframe"
 
 
-def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 0.015,
-              sigma_robot: float = 0.05, seed: int = 0, patch_dir: str | None = None,
+def run_batch(manifest: Manifest, *, uncertainty: int = 0,
+              sigma_laser: float = SIGMA_LASER, sigma_robot: float = SIGMA_ROBOT, seed: int = 0, patch_dir: str | None = None,
               progress: Progress | None = None) -> BatchResult:
     """Solve and diff every entry; one entry's failure never stops the run."""
     import time
@@ -431,6 +451,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
     datasets: list[Dataset] = []
     owners: list[int] = []
     frames: dict[int, Any] = {}
+    read: dict[int, tuple] = {}         # entry index -> (tcp, measurement): run-local state
     total = len(results)
     for k, r in enumerate(results):
         en = r.entry
@@ -460,8 +481,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
                                     exclude=en.exclude, no_exclusion=en.no_exclusion,
                                     lines=meas.lines, path=meas.path))
             owners.append(k)
-            r._tcp = tcp            # type: ignore[attr-defined]
-            r._meas = meas          # type: ignore[attr-defined]
+            read[k] = (tcp, meas)
         except UcsioError as exc:
             r.error, r.stage = (f"tool {en.tool}: {exc}" if stage == "tool" else str(exc)), stage
         if progress:
@@ -475,7 +495,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
         if isinstance(sol, UcsioError):
             r.error, r.stage = str(sol), "solve"
             continue
-        sol.tcp = tuple(float(v) for v in r._tcp)  # type: ignore[attr-defined]
+        sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool
         r.solution = sol
         cf, frame = frames[k]
@@ -495,7 +515,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
         for j, k in enumerate(todo):
             r = results[k]
             try:
-                _entry_uncertainty(r, *frames[k], uncertainty, sigma_laser, sigma_robot, seed)
+                _entry_uncertainty(r, read[k][1], *frames[k], uncertainty, sigma_laser,
+                                   sigma_robot, seed)
             except UcsioError as exc:
                 r.uncertainty_error = str(exc)
             if progress:
@@ -505,9 +526,6 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0, sigma_laser: float = 
     if patch_dir is not None:
         write_patches(results, frames, cache, patch_dir, manifest)
     t5 = time.perf_counter()
-    for r in results:
-        r.__dict__.pop("_meas", None)
-        r.__dict__.pop("_tcp", None)
     summary = summarize(results)
     return BatchResult(manifest=manifest, entries=results, summary=summary,
                        timings={"read": t1 - t0, "solve": t2 - t1, "diff": t3 - t2,
@@ -523,11 +541,19 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
     *passing* entry's frame is written with its measured value (a rejected
     dataset or a frame over tolerance is for a person to look at first); a
     file with several passing entries gets all of them in one copy. Each
-    frame goes through ``ucsio.patch.patch_frame`` (its refusals and
-    read-back check); a refusal is the entry's ``patch_error``, and that
-    file's copy is not written (the file's other entries get a
-    ``patch_error`` naming the refused one)."""
+    frame goes through ``ucsio.patch.patch_frame`` for its refusals (the
+    sibling modules of a shared-PERS check read through ``cache``, so each
+    file is parsed once per run); the copy with all of a file's frames
+    applied is parsed once and every frame must read back from it
+    (``ucsio.patch.verify``). A refusal is the entry's ``patch_error``, and
+    that file's copy is not written (the file's other entries get a
+    ``patch_error`` naming the refused one). The copy is not written either
+    when the source file changed on disk since it was read (its bytes are
+    what was patched): every entry of that file gets the ``patch_error``."""
     from . import patch as patcher
+
+    def load(p) -> Any:     # a sibling module, through the run's cache
+        return cache.controller(os.path.normpath(os.fspath(p)))
 
     by_file: dict[str, list[tuple[int, EntryResult]]] = {}
     for k, r in enumerate(results):
@@ -554,7 +580,8 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                 break
             seen[id(frame)] = r.entry.name
             try:
-                planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose))
+                planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose,
+                                                   verify=False, load=load))
             except UcsioError as exc:
                 problem, culprit = str(exc), r.entry.name
                 break
@@ -567,7 +594,17 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                     raise UcsioError("--patch-dir would overwrite the original", file=path)
                 target.parent.mkdir(parents=True, exist_ok=True)
                 mode = os.stat(path).st_mode & 0o7777
-                patcher.atomic_write(target, new, mode)
+
+                def unchanged(path=path, raw=cf.document.raw) -> None:
+                    try:
+                        same = Path(path).read_bytes() == raw
+                    except OSError:
+                        same = False
+                    if not same:
+                        raise UcsioError("the file changed on disk since it was read; patched "
+                                         "copy not written (run the batch again)", file=path)
+
+                patcher.atomic_write(target, new, mode, check=unchanged)
         except UcsioError as exc:
             problem = str(exc)
         except OSError as exc:
@@ -583,20 +620,20 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
 
 
 def _verify_combined(cf, new: bytes, planned) -> None:
-    """Each frame was verified alone by ``patch_frame``; parse the bytes with
-    all of them applied once more and check every frame reads back."""
+    """Parse the bytes with all of a file's patches applied, once, and check
+    every frame reads back from them (``ucsio.patch.verify`` on that parse:
+    ``patch_frame`` was told not to parse each frame's copy alone)."""
     from . import patch as patcher
     from .controller import parse
     from .document import Document
-    from .rotations import quat_angle
 
-    again = parse(Document(new, cf.path))
+    try:
+        again = parse(Document(new, cf.path))
+    except UcsioError as exc:
+        raise UcsioError(f"internal error: the patched copy does not parse back: {exc}",
+                         file=cf.path) from None
     for pr in planned:
-        p = again.frame(pr.frame.name).pose
-        if p is None or any(abs(a - b) > patcher.READBACK_TRANS for a, b in zip(p.t, pr.pose.t)) \
-                or quat_angle(p.q, pr.pose.q) > patcher.READBACK_ANGLE_DEG:
-            raise UcsioError(f"internal error: {pr.frame.name} does not read back from the "
-                             "patched copy", file=cf.path)
+        patcher.verify(pr, parsed=again)
 
 
 # ---------------------------------------------------------------- summary
@@ -665,7 +702,8 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
 CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "dx", "dy", "dz",
                "da", "db", "dc", "angle", "dist", "x", "y", "z", "a", "b", "c",
                "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "tolerance",
-               "measurement", "controller", "frame", "error", "patched", "patch_error")
+               "measurement", "controller", "frame", "error", "patched", "patch_error",
+               "reason")
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -678,7 +716,8 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
                "pass": r.passed, "e": r.e, "dt_mean": r.dt_mean, "group": r.group,
                "tolerance": r.entry.tolerance, "measurement": r.entry.measurement,
                "controller": r.entry.controller, "frame": r.entry.frame, "error": r.error or "",
-               "patched": r.patched, "patch_error": r.patch_error or ""}
+               "patched": r.patched, "patch_error": r.patch_error or "",
+               "reason": r.reason or ""}
         for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist"):
             row[k] = d.get(k)
         if m is not None:

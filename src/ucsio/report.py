@@ -20,7 +20,8 @@ missing number is drawn as "–", never an error.
 Numbers for machines: the whole ``--json`` document is embedded as
 ``<script type="application/json" id="ucsio-data">``; the summary cells carry
 ``data-key``/``data-value`` and every entry row ``data-name``, ``data-status``,
-``data-e``, ``data-dt-mean``, ``data-group``, ``data-pass``.
+``data-e``, ``data-dt-mean``, ``data-group``, ``data-pass`` (and a rejected
+entry's ``data-reason``: why its dataset was rejected).
 """
 from __future__ import annotations
 
@@ -30,6 +31,7 @@ import math
 import os
 from typing import Any, Sequence
 
+from . import defaults
 from .diff import GROUP_BOUNDS
 from .output import fmt
 
@@ -392,8 +394,11 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
             f'data-e="{_attr(_num(e.get("e")))}" data-dt-mean="{_attr(_num(e.get("dt_mean")))}" '
             f'data-group="{_attr(_num(e.get("group")))}" data-pass="{_attr(e.get("pass"))}"'
             + (f' data-patch-error="{_e(e["patch_error"])}"' if e.get("patch_error") else "")
+            + (f' data-reason="{_e(_reason(e))}"' if status == "rejected" else "")
             + f'><td><a href="#e{i}">{_e(e.get("name"))}</a></td>'
-            f'<td><span class="pill {cls}">{_e(status)}</span>{_patch_pill(e)}</td>'
+            f'<td><span class="pill {cls}"'
+            + (f' title="{_e(_reason(e))}"' if status == "rejected" else "")
+            + f'>{_e(status)}</span>{_patch_pill(e)}</td>'
             f'<td class="n">{_used(e)}</td>'
             f'<td class="n">{_f(e.get("e"))}</td><td class="n">{_f(e.get("dt_mean"))}</td>'
             f'<td class="n">{_f(e.get("group"))}</td><td class="n">{_f(d.get("dx"))}</td>'
@@ -416,6 +421,16 @@ def _used(e: dict) -> str:
     if n_points is None:
         return "\u2013"
     return f"{_f(n_used)}/{_f(n_points)}"
+
+
+def _reason(e: dict) -> str:
+    """Why an entry's dataset was rejected: the solver's ``reason`` (too few
+    points, or residuals over the threshold with no point to single out);
+    a JSON without one (older, or hand-edited) gets a generic line."""
+    reason = e.get("reason")
+    if isinstance(reason, str) and reason.strip():
+        return reason.strip()
+    return "the dataset was rejected"
 
 
 def _patch_pill(e: dict) -> str:
@@ -476,7 +491,7 @@ def _detail(i: int, e: dict) -> str:
             for p in pts)
         body.append("<table><tr><th>point</th><th class='n'>residual</th>"
                     "<th class='n'>leave-one-out</th><th>used</th></tr>" + prow + "</table>")
-        body.append(points_svg(pts, _num(e.get("threshold")) or 1.5))
+        body.append(points_svg(pts, _num(e.get("threshold")) or defaults.THRESHOLD))
     if pts or e.get("n_points") is not None:
         info = (f"n {_f(e.get('n_used'))} of {_f(e.get('n_points'))} used, e {_f(e.get('e'))} mm, "
                 f"rms {_f(e.get('rms'))}, max {_f(e.get('max'))} mm (threshold "
@@ -491,10 +506,9 @@ def _detail(i: int, e: dict) -> str:
         if e.get("uncertainty_error"):
             info += f"; uncertainty not computed: {e['uncertainty_error']}"
         body.append(f'<p class="note" style="flex-basis:100%">{_e(info)}</p>')
-        if status == "rejected":
-            body.append(f'<div class="err-msg" style="flex-basis:100%">REJECTED: only '
-                        f'{_f(e.get("n_used"))} points left, at least {_f(e.get("min_points"))} '
-                        'needed; measure again</div>')
+    if status == "rejected":
+        body.append('<div class="err-msg rejected" style="flex-basis:100%">REJECTED: '
+                    f'{_e(_reason(e))}; measure again</div>')
     src = f"measurement {e.get('measurement')}; controller {e.get('controller')}"
     if e.get("patched"):
         src += f"; patched copy {e['patched']}"

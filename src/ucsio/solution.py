@@ -19,13 +19,24 @@ def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose
     """The frame of a SOLUTION.json written by ``ucsio solve -o``, or of a
     plain JSON object with x, y, z and either a, b, c (KUKA) or q (ABB order).
     A solution whose dataset was rejected is refused unless
-    ``allow_rejected``; q and a, b, c given together must agree."""
+    ``allow_rejected``; q and a, b, c given together must agree. A file that
+    is not UTF-8 (a BOM is allowed) is a UcsioError, like bad JSON."""
     path = os.fspath(path)
     try:
-        with open(path, encoding="utf-8-sig") as fh:
-            data = json.load(fh)
+        with open(path, "rb") as fh:
+            raw = fh.read()
     except OSError as exc:
         raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
+    bom = 3 if raw.startswith(b"\xef\xbb\xbf") else 0
+    try:
+        text = raw[bom:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        at = bom + exc.start
+        raise UcsioError(f"not UTF-8 text: byte 0x{raw[at]:02x} at offset {at} cannot be decoded "
+                         "(a SOLUTION.json is UTF-8)", file=path,
+                         line=raw[:at].count(b"\n") + 1) from None
+    try:
+        data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno,
                          col=exc.colno) from None
@@ -38,8 +49,12 @@ def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = Fa
     if not isinstance(data, dict):
         raise UcsioError("expected a JSON object with a 'frame' or x, y, z ...", file=path)
     if data.get("accepted") is False and not allow_rejected:
-        raise UcsioError("this solution's dataset was rejected (too few points within the "
-                         "threshold): measure again", file=path)
+        # the solver's own reason (SOLUTION.json "reason"); an older or
+        # hand-made file without one gets the generic wording
+        reason = data.get("reason")
+        why = (f"the dataset was rejected: {reason.strip()}"
+               if isinstance(reason, str) and reason.strip() else "the dataset was rejected")
+        raise UcsioError(f"{why}; measure again", file=path)
     frame = data.get("frame", data)
     if not isinstance(frame, dict):
         raise UcsioError("'frame' is not a JSON object", file=path)

@@ -162,6 +162,11 @@ def render(result, patching: bool | None = None) -> str:
     if patching:
         headers.append("patch")
     out = [table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9})]
+    rejected = [r for r in result.entries if r.status == "rejected"]
+    if rejected:
+        out.append("")
+        out.append("rejected (measure again):")
+        out.extend(f"  {r.entry.name}: {r.reason}" for r in rejected)
     errors = [r for r in result.entries if r.error is not None]
     if errors:
         out.append("")
