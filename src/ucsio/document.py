@@ -149,6 +149,15 @@ class Document:
 
 
 
+def text_lines(text: str) -> list[str]:
+    """Lines without their endings, for showing diffs: CRLF and CR CR LF lose
+    their CRs, and a final newline ends the last line (it adds none)."""
+    lines = text.split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    return [ln.rstrip("\r") for ln in lines]
+
+
 def looks_binary(raw: bytes, limit: int = 4096) -> bool:
     """Encrypted RAPID modules and other binaries: NUL or control bytes early on."""
     head = raw[:limit]

@@ -43,7 +43,7 @@ from typing import Any
 
 from . import rotations as rot
 from .controller import ABB_SUFFIXES, ControllerFile, parse
-from .document import Document, Edit
+from .document import Document, Edit, text_lines
 from .errors import UcsioError
 from .files import atomic_write
 from .frames import Frame, Number, Pose
@@ -400,14 +400,10 @@ class PatchResult:
                 "backup": self.backup}
 
 
-def _lines(text: str) -> list[str]:
-    return [ln.rstrip("\r") for ln in text.split("\n")]
-
-
 def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: int = 1) -> str:
     new_text = Document(new_bytes, doc.path).text
     label = (label or doc.path).replace(os.sep, "/").lstrip("/")
-    out = difflib.unified_diff(_lines(doc.text), _lines(new_text), f"a/{label}", f"b/{label}",
+    out = difflib.unified_diff(text_lines(doc.text), text_lines(new_text), f"a/{label}", f"b/{label}",
                                n=n, lineterm="")
     return "\n".join(out) + ("\n" if new_text != doc.text else "")
 

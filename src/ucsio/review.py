@@ -19,7 +19,7 @@ from typing import Any
 
 from .controller import ControllerFile, load, parse
 from .diff import DEFAULT_TOLERANCE, frame_delta
-from .document import Document
+from .document import Document, text_lines
 from .errors import UcsioError
 from .frames import Frame, Pose
 from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
@@ -232,15 +232,8 @@ def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]
     return text, result
 
 
-def _text_lines(text: str) -> list[str]:
-    lines = text.split("\n")
-    if lines and lines[-1] == "":
-        lines.pop()                     # the final newline ends a line, it adds none
-    return [ln.rstrip("\r") for ln in lines]
-
-
 def _lines(cf: ControllerFile | None) -> list[str]:
-    return [] if cf is None else _text_lines(cf.document.text)
+    return [] if cf is None else text_lines(cf.document.text)
 
 
 def _frame_lines(cf: ControllerFile | None) -> set[int]:
@@ -267,7 +260,7 @@ def plain_diff(path: str, old_file: str, new_file: str) -> str:
     def lines(p):
         if _is_devnull(p):
             return []
-        return _text_lines(Document(open(p, "rb").read(), p).text)
+        return text_lines(Document.read(p).text)
     old_label = "/dev/null" if _is_devnull(old_file) else f"a/{path}"
     new_label = "/dev/null" if _is_devnull(new_file) else f"b/{path}"
     out = difflib.unified_diff(lines(old_file), lines(new_file), old_label, new_label,
@@ -285,8 +278,7 @@ def textconv_file(path: str) -> str:
             return textconv(cf)
     except UcsioError:
         pass
-    raw = open(path, "rb").read()
-    return Document(raw, path).text
+    return Document.read(path).text
 
 
 __all__ = ["diff_frame", "diff_files", "frame_changes", "textconv", "frame_line",
