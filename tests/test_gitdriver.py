@@ -76,14 +76,23 @@ def test_textconv_driver(repo):
     out = git(repo, "diff")
     minus = [ln for ln in out.splitlines() if ln.startswith("-wobjSpec ")]
     plus = [ln for ln in out.splitlines() if ln.startswith("+wobjSpec ")]
-    assert minus == ["-wobjSpec wobjdata ref=world x=6130.000 y=2444.711 z=1156.772 "
-                     "q=[0.690346,0.153046,-0.153046,0.690346] robhold=False ufprog=True "
+    assert minus == ["-wobjSpec wobjdata ref=world x=6130 y=2444.711 z=1156.772 "
+                     "q1=0.690346 q2=0.153046 q3=-0.153046 q4=0.690346 robhold=False ufprog=True "
                      "storage=TASK PERS"]
-    assert len(plus) == 1 and "x=6125.390 y=2445.560 z=1168.990" in plus[0]
-    # only that frame's line changed
+    assert len(plus) == 1 and "x=6125.39 y=2445.56 z=1168.99" in plus[0]
+    # that frame's line, and the file's own line below it: nothing else changed
     changed = [ln for ln in out.splitlines()
                if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
-    assert len(changed) == 2
+    assert len(changed) == 4
+    assert [ln for ln in changed if "TASK PERS wobjdata wobjSpec:=" in ln][0].startswith("-")
+
+
+def test_textconv_never_hides_a_change_outside_frames(repo):
+    git(repo, "config", "diff.ucsio.textconv", f"{UCSIO} --textconv")
+    path = repo / "R02" / "$config.dat"
+    path.write_bytes(path.read_bytes().replace(b"INT MAX_TOOL=2", b"INT MAX_TOOL=3", 1))
+    out = git(repo, "diff")
+    assert "-INT MAX_TOOL=2" in out and "+INT MAX_TOOL=3" in out
 
 
 def test_external_diff_never_hides_other_changes(repo):

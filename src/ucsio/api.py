@@ -124,7 +124,7 @@ def save(result: PatchResult, path: PathLike | None = None, backup: bool = False
 
 
 def textconv(file: PathLike | ControllerFile) -> str:
-    """One stable line per frame (``ucsio diff --textconv``)."""
+    """One stable line per frame, then the file's text (``ucsio diff --textconv``)."""
     from .review import textconv as _textconv
     return _textconv(_cell(file))
 

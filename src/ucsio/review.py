@@ -6,8 +6,8 @@
   (case-insensitively): ``changed``, ``added``, ``removed``. Values that are
   equal at the controllers' float32 precision count as unchanged, and so do
   q and -q, or two A, B, C splits of the same rotation.
-- ``textconv``: a stable one-line-per-frame listing for git's
-  ``diff.<driver>.textconv``.
+- ``textconv``: a stable one-line-per-frame listing (values as written),
+  then the file's text, for git's ``diff.<driver>.textconv``.
 - ``git_diff``: the seven-argument form git passes to an external diff
   driver (``GIT_EXTERNAL_DIFF`` or ``diff.<driver>.command``).
 """
@@ -138,31 +138,46 @@ def _num(v: float | None, digits: int) -> str:
     return s.lstrip("-") if float(s) == 0 else s
 
 
+def _info_text(v: Any) -> str:
+    """An info value as a reviewer reads it: a load as M/CM/J numbers, not a dict."""
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k} {_info_text(x)}" for k, x in v.items()) + "}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_info_text(x) for x in v) + "]"
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:g}"
+    return str(v)
+
+
 def frame_line(f: Frame) -> str:
-    """One stable line per frame: name, type, label, reference, the values at
-    the written precision (no file position, so unrelated edits do not show)."""
+    """One stable line per frame: name, type, label, reference, every value
+    exactly as the file writes it, and what else defines the frame (robhold,
+    ufprog, types, the tool's load). No file position, so unrelated edits do
+    not show on it."""
     parts = [f.name, f.type]
     if f.label:
         parts.append(f"label={f.label!r}")
     parts.append(f"ref={f.reference}")
-    p = f.pose
-    if p is None:
+    if f.pose is None:
         parts.append("no value")
-    else:
-        parts += [f"x={_num(p.x, 3)}", f"y={_num(p.y, 3)}", f"z={_num(p.z, 3)}"]
-        if f.vendor == "abb":
-            parts.append("q=[" + ",".join(_num(c, 6) for c in p.q) + "]")
-        else:
-            a, b, c = p.abc
-            parts += [f"a={_num(a, 4)}", f"b={_num(b, 4)}", f"c={_num(c, 4)}"]
-    for k in ("robhold", "ufprog", "ufmec", "storage", "base_type", "tool_type"):
+    for key, n in f.numbers.items():
+        parts.append(f"{key}={''.join(n.text.split())}")
+    for k in ("robhold", "ufprog", "ufmec", "storage", "base_type", "tool_type", "role", "load",
+              "machine"):
         if k in f.info and f.info[k] is not None and f.info[k] != "":
-            parts.append(f"{k}={f.info[k]}")
+            parts.append(f"{k}={_info_text(f.info[k])}")
     return " ".join(str(x) for x in parts)
 
 
 def textconv(cf: ControllerFile) -> str:
-    return "".join(frame_line(f) + "\n" for f in cf.frames)
+    """What git diffs in textconv mode: a line per frame (values as written),
+    then the file's own text, so that a change anywhere in the file shows
+    and a frame's change reads as one line before the raw lines."""
+    head = "".join(frame_line(f) + "\n" for f in cf.frames)
+    text = "\n".join(text_lines(cf.document.text))
+    return f"# ucsio: {len(cf.frames)} frames\n{head}# ucsio: the file\n{text}\n"
 
 
 def _pose_text(d: dict) -> str:
@@ -270,8 +285,7 @@ def plain_diff(path: str, old_file: str, new_file: str) -> str:
 
 def textconv_file(path: str) -> str:
     """The listing of a file for git textconv. A file ucsio cannot read, or
-    one without any frame, is passed through as text, so git still shows
-    what changed in it."""
+    one without any frame, is passed through as text."""
     try:
         cf = load(path)
         if cf.frames:

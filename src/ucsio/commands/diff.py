@@ -9,7 +9,8 @@
       removed. Differences below float32 precision count as unchanged. Exit 0
       whether or not frames changed (as git's external diff expects).
   ucsio diff --textconv FILE
-      one stable line per frame, for git's diff.<driver>.textconv.
+      one stable line per frame (values as written), then the file's text,
+      for git's diff.<driver>.textconv: nothing in the file can change unseen.
   ucsio diff PATH OLD-FILE OLD-HEX OLD-MODE NEW-FILE NEW-HEX NEW-MODE
       the seven arguments git passes to an external diff driver
       (GIT_EXTERNAL_DIFF, or diff.<driver>.command); /dev/null for an added
