@@ -319,8 +319,12 @@ def test_measured_object_frame_is_written_in_its_user_frame(tmp_path, capsys):
 
 def test_rejected_solution_refused(tmp_path, capsys):
     sol = solution(tmp_path, Pose.from_abc(1, 2, 3, 0, 0, 0), accepted=False)
-    assert main(["patch", str(CELL), "--frame", "wobjTable", "--measured", str(sol)]) == 2
+    before = CELL.read_bytes()
+    # a rejected dataset is a failed gate (SPEC: exit 1), for patch and diff alike
+    assert main(["patch", str(CELL), "--frame", "wobjTable", "--measured", str(sol)]) == 1
     assert "rejected" in capsys.readouterr().err
+    assert main(["diff", str(CELL), "--frame", "wobjTable", "--measured", str(sol)]) == 1
+    assert "rejected" in capsys.readouterr().err and CELL.read_bytes() == before
 
 
 def test_shared_pers_refused(tmp_path, capsys):

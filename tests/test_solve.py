@@ -516,3 +516,14 @@ def test_text_output_prints_the_reason(capsys, tmp_path):
     rc, out, err = run_cli(capsys, str(f), "--min-points", "3")
     assert rc == 1
     assert "residuals over the threshold and no point can be singled out" in out
+
+
+def test_no_exclusion_warns_about_points_over_the_threshold(capsys):
+    from ucsio.cli import main
+    rc = main(["solve", str(FIXTURES / "kuka_base3.csv"), "--tcp", "-20.67,89.73,33.44",
+               "--no-exclusion", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["accepted"]
+    assert len(out["warnings"]) == 1 and "P6" in out["warnings"][0]
+    rc = main(["solve", str(FIXTURES / "kuka_base3.csv"), "--tcp", "-20.67,89.73,33.44", "--json"])
+    assert json.loads(capsys.readouterr().out)["warnings"] == []

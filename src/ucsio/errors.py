@@ -31,7 +31,8 @@ class UcsioError(Exception):
         return f"{where}{self.message}"
 
 
-class GateFailed(Exception):
-    """A check did not pass (exit status 1): over tolerance, rejected, lint."""
+class RejectedDataset(UcsioError):
+    """A solution whose dataset was rejected: SPEC counts that as a failed
+    gate (exit 1), not as bad input."""
 
     exit_code = 1

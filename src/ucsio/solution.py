@@ -11,7 +11,7 @@ import os
 from typing import Any
 
 from . import rotations as rot
-from .errors import UcsioError
+from .errors import RejectedDataset, UcsioError
 from .frames import Pose
 
 
@@ -54,7 +54,7 @@ def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = Fa
         reason = data.get("reason")
         why = (f"the dataset was rejected: {reason.strip()}"
                if isinstance(reason, str) and reason.strip() else "the dataset was rejected")
-        raise UcsioError(f"{why}; measure again", file=path)
+        raise RejectedDataset(f"{why}; measure again", file=path)
     frame = data.get("frame", data)
     if not isinstance(frame, dict):
         raise UcsioError("'frame' is not a JSON object", file=path)

@@ -96,13 +96,23 @@ class Solution:
         d.update({"w": w, "p": p, "r": r, "matrix": self.matrix4})
         return d
 
+    @property
+    def warnings(self) -> list[str]:
+        """What a reviewer must read although the set is accepted: points
+        kept over the threshold (--no-exclusion keeps them on purpose)."""
+        over = [p.name for p in self.points if p.used and p.residual > self.threshold]
+        if not (self.accepted and over):
+            return []
+        return [f"{len(over)} used point{'s' if len(over) > 1 else ''} over the "
+                f"{self.threshold:g} mm threshold, kept (--no-exclusion): {', '.join(over)}"]
+
     def as_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {
             "frame": self.frame_dict(),
             "points": [p.as_dict() for p in self.points],
             "n_points": self.n_points, "n_used": self.n_used,
             "rms": self.rms, "mean": self.mean, "max": self.max,
-            "accepted": self.accepted, "reason": self.reason,
+            "accepted": self.accepted, "reason": self.reason, "warnings": self.warnings,
             "settings": {"tcp": list(self.tcp), "tool": self.tool, "threshold": self.threshold,
                          "min_points": self.min_points, "no_exclusion": self.no_exclusion,
                          "source": self.source},

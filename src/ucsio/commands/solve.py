@@ -136,5 +136,6 @@ def render(sol) -> str:
         urows = [[k, f"{s[k]:.4f}", f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
                  for k in ("x", "y", "z", "angle")]
         lines.append(table(["", "std", "ci95", "analytical std"], urows, right={1, 3}))
+    lines.extend(f"warning: {w}" for w in sol.warnings)
     lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
     return "\n".join(lines) + "\n"
