@@ -639,7 +639,8 @@ def _verify_combined(cf, new: bytes, planned) -> None:
 # ---------------------------------------------------------------- summary
 
 def _pearson(a: Sequence[float], b: Sequence[float]) -> float | None:
-    if len(a) < 2:
+    """Pearson's r, or None where it says nothing: two points always give +-1."""
+    if len(a) < 3:
         return None
     x = np.asarray(a, dtype=float)
     y = np.asarray(b, dtype=float)
