@@ -44,6 +44,11 @@ VARIANTS = [
      "w", (1, 2, 3)),
     ("routine-with-keywords-in-strings", f'PROC p()\n    TPWrite "ENDPROC";\n    ! ENDPROC\n  ENDPROC\n'
                                         f"  PERS wobjdata w:={W};", "w", (1, 2, 3)),
+    ("comment-after-pers", f"PERS ! shared with the cell module\n  wobjdata w:={W};", "w", (1, 2, 3)),
+    ("comment-lines-between-keywords", f"TASK ! c\n  ! whole line\n  PERS\n  ! c\n  wobjdata w:={W};",
+     "w", (1, 2, 3)),
+    ("comment-after-local-before-proc", f"LOCAL ! c\n  PROC p()\n  ENDPROC\n  PERS wobjdata w:={W};",
+     "w", (1, 2, 3)),
     ("placeholder-in-routine", f"PROC p()\n    MoveL <EXP>, v100, z10, tool0;\n  ENDPROC\n"
                                f"  PERS wobjdata w:={W};", "w", (1, 2, 3)),
 ]
@@ -62,7 +67,8 @@ def test_variant(body, name, xyz, full):
 
 @pytest.mark.parametrize("header", ["%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n",
                                     "%%%\r\n  VERSION: 1\r\n%%%\r\n", "\n", ""])
-@pytest.mark.parametrize("module_line", ["MODULE m", "MODULE m(SYSMODULE)", "MODULE m (SYSMODULE, NOSTEPIN)"])
+@pytest.mark.parametrize("module_line", ["MODULE m", "MODULE m(SYSMODULE)", "MODULE m (SYSMODULE, NOSTEPIN)",
+                                         "MODULE ! name below\nm"])
 def test_headers_and_module_attributes(header, module_line):
     text = f"{header}{module_line}\n  PERS pose p:=[[1,2,3],[1,0,0,0]];\nENDMODULE"
     for full in (False, True):

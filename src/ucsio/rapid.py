@@ -42,7 +42,9 @@ def _grammar_terminal(name: str) -> str:
     return re.search(rf"^{name}(?:\.\d+)?: /(.*)/i$", text, re.M).group(1)
 
 
-_DECL_HEAD = r"(?:(?:LOCAL|TASK)\s+)?(?:PERS|CONST|VAR)\s+"
+# between keywords: whitespace and comments ("PERS ! shared\n  wobjdata w ...")
+_GAP = r"(?:\s|![^\r\n]*+)++"
+_DECL_HEAD = r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)" + _GAP
 _DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
 # Whitespace and comments are folded into the item after them: one match per
 # item keeps the Python loop short on modules with tens of thousands of targets.
@@ -54,7 +56,7 @@ _OUTLINE = re.compile(
     + r"(?:(?:\s++|![^\r\n]*+)*+" + _DECL_HEAD + r"(?!(?:wobjdata|tooldata|pose)\b)\w+"
     + _DECL_REST + r")*+)"
     r"|(?P<header>%%%[\s\S]*?%%%)"
-    r"|(?P<module>MODULE\b[ \t]*\w*[ \t]*(?:\([^)\r\n]*\))?)"
+    r"|(?P<module>MODULE\b(?:\s|![^\r\n]*+)*+\w*(?:[ \t]|![^\r\n]*+)*+(?:\([^)\r\n]*\))?)"
     r"|(?P<endmodule>ENDMODULE\b)"
     r"|(?P<routine>" + _grammar_terminal("ROUTINE") + ")"
     r"|(?P<record>" + _grammar_terminal("RECORD_DEF") + ")"
