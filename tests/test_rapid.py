@@ -303,3 +303,35 @@ def test_check_round_trip_catches_a_span_off_by_one():
     n = cf.frames[0].numbers["x"]
     cf.frames[0].numbers["x"] = Number(Span(n.span.start, n.span.end + 1), n.text, n.value)
     assert not round_trip(cf)
+
+
+def test_placeholders_are_legal_and_make_a_declaration_incomplete(tmp_path):
+    text = ("MODULE m\n  <DDN>\n  PERS <TDN> w0 := 1;\n"
+            '  PERS wobjdata wPh := [FALSE,TRUE,"",[[<EXP>,2,3],[1,0,0,0]],[[4,5,6],[1,0,0,0]]];\n'
+            "ENDMODULE\n")
+    for full in (False, True):
+        cf = rapid.parse(Document(text.encode(), "ph.mod"), full=full)
+        assert cf.frame("wPh.oframe").info["incomplete"] is True
+        assert [(l.code, l.line) for l in cf.lints if l.severity == "warning"] == [("incomplete", 4)]
+    path = tmp_path / "ph.mod"
+    path.write_text(text)
+    res = run_cli("patch", path, "--frame", "wPh.oframe", "--set", "1,2,3,0,0,0")
+    assert res.returncode == 2 and "placeholder" in res.stderr and path.read_text() == text
+
+
+@pytest.mark.parametrize("body,code", [
+    ('PERS wobjdata w := [FALSE,TRUE,"",[[1,2,3],[1,0,0,0]]];', "bad-shape"),
+    ('PERS wobjdata w := [FALSE,TRUE,"",[[1,2,3],[1,0,0]],[[0,0,0],[1,0,0,0]]];', "bad-shape"),
+    ("PERS pose w{3} := [[[1,2,3],[1,0,0,0]],[[1,2,3],[1,0,0,0]]];", "array-size"),
+    ("PERS pose w := [[1,2,3],[1,0,0,0]];\n  PERS pose W := [[1,2,3],[1,0,0,0]];", "duplicate"),
+])
+def test_ill_formed_frame_data_is_a_warning(body, code):
+    text = f"MODULE m\n  {body}\nENDMODULE\n"
+    for full in (False, True):
+        cf = rapid.parse(Document(text.encode(), "s.mod"), full=full)
+        assert [l.code for l in cf.lints if l.severity == "warning"] == [code]
+
+
+def test_number_beyond_float32_is_bad_input():
+    with pytest.raises(UcsioError, match="out of range"):
+        rapid.parse(Document(b"MODULE m\n  PERS pose p := [[1E400,0,0],[1,0,0,0]];\nENDMODULE\n"))

@@ -430,6 +430,9 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
                          f"{frame.info.get('ufmec')!r}): the controller sets it; not patchable",
                          **where)
+    if frame.info.get("incomplete"):
+        raise UcsioError(f"{frame.name}: the declaration holds an editor placeholder (<EXP>, ...): "
+                         "incomplete, not patchable", **where)
     if frame.pose is None or not frame.numbers:
         raise UcsioError(f"{frame.name}: the file gives no literal value for this frame; "
                          "nothing to patch", **where)

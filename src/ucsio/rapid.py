@@ -28,6 +28,7 @@ from .values import Value
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
 NORM_TOLERANCE = 1e-5   # |sum q^2 - 1| above this is "not normalised" (NOrient)
+NUM_MAX = 3.4028235e38  # RAPID num is IEEE single precision
 
 # -- the outline scanner -------------------------------------------------------
 # Strings and comments are matched before anything can end inside them.
@@ -45,6 +46,7 @@ def _grammar_terminal(name: str) -> str:
 # between keywords: whitespace and comments ("PERS ! shared\n  wobjdata w ...")
 _GAP = r"(?:\s|![^\r\n]*+)++"
 _DECL_HEAD = r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)" + _GAP
+_PLACEHOLDER = r"<(?:TDN|DDN|RDN|PAR|ALT|DIM|SMT|VAR|EIT|CSE|EXP|ARG|ID)>"
 _DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
 # Whitespace and comments are folded into the item after them: one match per
 # item keeps the Python loop short on modules with tens of thousands of targets.
@@ -52,7 +54,7 @@ _OUTLINE = re.compile(
     r"(?:\s++|![^\r\n]*+)*+(?:"
     r"(?P<frame_decl>" + _DECL_HEAD + r"(?:wobjdata|tooldata|pose)\b" + _DECL_REST + ")"
     # a run of other declarations (a path module's 20,000 robtargets) is one match
-    r"|(?P<decls>" + _DECL_HEAD + r"\w+" + _DECL_REST
+    r"|(?P<decls>" + _DECL_HEAD + r"(?:\w+|" + _PLACEHOLDER + ")" + _DECL_REST
     + r"(?:(?:\s++|![^\r\n]*+)*+" + _DECL_HEAD + r"(?!(?:wobjdata|tooldata|pose)\b)\w+"
     + _DECL_REST + r")*+)"
     r"|(?P<header>%%%[\s\S]*?%%%)"
@@ -61,6 +63,7 @@ _OUTLINE = re.compile(
     r"|(?P<routine>" + _grammar_terminal("ROUTINE") + ")"
     r"|(?P<record>" + _grammar_terminal("RECORD_DEF") + ")"
     r"|(?P<alias>ALIAS\b[^;]*;)"
+    r"|(?P<placeholder>" + _PLACEHOLDER + ")"
     r"|(?P<eof>\Z))",
     re.IGNORECASE,
 )
@@ -112,6 +115,10 @@ def outline(doc: Document) -> list[Region]:
         if kind == "eof":
             break
         start = m.start(kind)
+        if kind == "placeholder":   # <DDN> where a declaration will go: legal, nothing to list
+            if not in_module:
+                raise doc.error("placeholder outside MODULE ... ENDMODULE", start)
+            continue
         if kind == "module":
             if in_module:
                 raise doc.error("MODULE inside a module (ENDMODULE missing above)", start)
@@ -298,6 +305,21 @@ class _Expr:
         self.start, self.end = start, end
 
 
+class _Placeholder(_Expr):
+    """An editor placeholder (<EXP>, ...) where a value should be."""
+
+
+def _placeholder_in(v) -> _Placeholder | None:
+    if isinstance(v, _Placeholder):
+        return v
+    if isinstance(v, list):
+        for x in v:
+            found = _placeholder_in(x)
+            if found is not None:
+                return found
+    return None
+
+
 def _value(node):
     """Lark subtree -> Number | bool | str | list | _Expr."""
     from lark import Token, Tree
@@ -315,6 +337,8 @@ def _value(node):
             sign = -1.0 if kind == "neg" else 1.0
             return Number(Span(sign_token.start_pos, inner.span.end), None, sign * inner.value)  # type: ignore[arg-type]
         return _Expr(*_extent(node))
+    if kind == "placeholder":
+        return _Placeholder(*_extent(node))
     if kind == "bool":
         return str(node.children[0]).upper() == "TRUE"
     if kind == "string":
@@ -427,13 +451,21 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
     pose = None
     numbers: dict[str, Number] = {}
     if parsed is None:
-        if decl.value is not None:  # a declaration without any value is linted once, above
+        if _is_literal(pose_value) and not info.get("incomplete"):
+            # written out, but not [[x, y, z], [q1, q2, q3, q4]]: the controller refuses it
+            cf.lint(at, "bad-shape", f"{name}: a pose is [[x, y, z], [q1, q2, q3, q4]]; "
+                    "this value is not (not patchable)")
+        elif decl.value is not None and not info.get("bad_shape"):  # no value: linted once, above
             cf.lint(at, "not-literal", f"{name}: not a literal pose; listed without numbers, "
                     "not patchable", severity="info")
         info = dict(info, value=None)
     else:
         numbers, (t, q) = parsed
         numbers = {k: _with_text(doc, n) for k, n in numbers.items()}
+        for n in numbers.values():
+            if not abs(n.value) <= NUM_MAX:
+                raise doc.error(f"number {n.text} is out of range for a RAPID num (float32)",
+                                n.span.start)
         norm2 = sum(c * c for c in q)
         if norm2 == 0.0:
             cf.lint(numbers["q1"].span.start, "zero-quaternion", f"{name}: orientation is all zeros")
@@ -447,33 +479,63 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
                  reference=reference, numbers=numbers, info=info, document=doc)
 
 
+def _is_literal(v) -> bool:
+    """A value written out in full (numbers, booleans, strings, aggregates of
+    them), as opposed to one that names or computes something."""
+    if isinstance(v, list):
+        return all(_is_literal(x) for x in v)
+    return isinstance(v, (Number, bool, str))
+
+
 def _with_text(doc: Document, n: Number) -> Number:
     if n.text is None:
         return Number(n.span, doc.slice(n.span), n.value)
     return n
 
 
+RECORD_SIZES = {"tooldata": 3, "wobjdata": 5}
+
+
 def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
+    seen: dict[tuple[str, str], Decl] = {}
     for d in decls:
         if len(d.name) > IDENT_MAX:
             cf.lint(d.start, "long-name", f"{d.name}: identifier longer than {IDENT_MAX} characters")
+        key = (d.module.casefold(), d.name.casefold())
+        if key in seen:
+            cf.lint(d.start, "duplicate", f"{d.name}: declared twice in module {d.module} "
+                    f"(first at line {cf.document.line_of(seen[key].start)})")
+        seen.setdefault(key, d)
         kind = d.type.casefold()
         if kind not in FRAME_TYPES:
             continue
+        _check_array_size(cf, d)
         storage = " ".join(x for x in (d.scope, d.storage) if x)
         base_info = {"storage": storage, "module": d.module}
+        ph = _placeholder_in(d.value)
+        if ph is not None:
+            # FORMATS 1.2: an unfinished declaration is listed, never patched
+            cf.lint(ph.start, "incomplete", f"{d.name}: contains the placeholder "
+                    f"{cf.document.text[ph.start:ph.end]}; incomplete, not patchable")
+            base_info["incomplete"] = True
         if d.value is None:
             cf.lint(d.start, "no-value", f"{d.name}: declared without a value (legal: another "
                     "module or the default gives it); not patchable here", severity="info")
         for name, v in _elements(d.value, d.dims, d.name):
             at = _start_of(v, d.start)
+            size = RECORD_SIZES.get(kind)
+            element_info = base_info
+            if size and isinstance(v, list) and len(v) != size and not base_info.get("incomplete"):
+                cf.lint(at, "bad-shape", f"{name}: a {kind} has {size} components, this value "
+                        f"has {len(v)} (not patchable)")
+                element_info = dict(base_info, bad_shape=True)   # said once, not per component
             if kind == "pose":
-                cf.frames.append(_make_frame(cf, d, name, "pose", v, "unknown", dict(base_info), at))
+                cf.frames.append(_make_frame(cf, d, name, "pose", v, "unknown", dict(element_info), at))
             elif kind == "tooldata":
                 robhold = v[0] if isinstance(v, list) and len(v) == 3 and isinstance(v[0], bool) else None
                 tframe = v[1] if robhold is not None else None
                 load = _loaddata(v[2]) if robhold is not None else None
-                info = dict(base_info, robhold=robhold, load=load)
+                info = dict(element_info, robhold=robhold, load=load)
                 ref = "flange" if robhold is not False else "world"
                 cf.frames.append(_make_frame(cf, d, name, "tooldata", tframe, ref, info, at))
                 if robhold and load is not None and load["mass"] <= 0:
@@ -482,7 +544,7 @@ def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
                 ok = (isinstance(v, list) and len(v) == 5 and isinstance(v[0], bool)
                       and isinstance(v[1], bool) and isinstance(v[2], str))
                 robhold, ufprog, ufmec = (v[0], v[1], v[2]) if ok else (None, None, None)
-                info = dict(base_info, robhold=robhold, ufprog=ufprog, ufmec=ufmec)
+                info = dict(element_info, robhold=robhold, ufprog=ufprog, ufmec=ufmec)
                 # uframe is in world with a robot-held tool; with a stationary
                 # tool (wobj robhold TRUE) the robot holds the work object.
                 uref = "wrist" if robhold else "world"
@@ -495,6 +557,25 @@ def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
                 cf.frames.append(_make_frame(cf, d, f"{name}.oframe", "wobjdata",
                                              v[4] if ok else None, "uframe",
                                              dict(info, component="oframe"), at))
+
+
+def _check_array_size(cf: ControllerFile, d: Decl) -> None:
+    """{3} initialised with 2 elements: the controller refuses the module."""
+    if not d.dims or not isinstance(d.value, list):
+        return
+    level = [d.value]
+    for depth, dim in enumerate(d.dims):
+        if not isinstance(dim, Number):
+            return            # a dimension named by a CONST: not evaluated here
+        for v in level:
+            if not isinstance(v, list):
+                return
+            if len(v) != int(dim.value):
+                cf.lint(_start_of(v, d.start), "array-size",
+                        f"{d.name}: dimension {depth + 1} is {int(dim.value)}, the value has "
+                        f"{len(v)} elements")
+                return
+        level = [x for v in level for x in v]
 
 
 def _start_of(v, default: int) -> int:
