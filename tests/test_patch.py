@@ -489,6 +489,7 @@ def test_quaternion_written_with_q1_not_negative():
 
 
 @pytest.mark.parametrize("given,written", [((10.0, 100.0, 0.0), (-170.0, 80.0, 180.0)),
+                                           ((0.0, 90.0, 30.0), (-30.0, 90.0, 0.0)),
                                            ((370.0, 0.0, 0.0), (10.0, 0.0, 0.0)),
                                            ((0.0, 0.0, -180.0), (0.0, 0.0, 180.0))])
 def test_kuka_angles_written_in_spec_ranges(given, written):

@@ -108,9 +108,11 @@ def matrix_to_abc(m: Matrix) -> tuple[float, float, float]:
 
 def canonical_abc(abc: tuple[float, float, float], q: Quat) -> tuple[float, float, float]:
     """A, B, C as given when they are in SPEC's ranges (B in [-90, 90], A and
-    C in (-180, 180]), else the canonical angles of the same rotation ``q``."""
+    C in (-180, 180], and C = 0 at B = +-90), else the canonical angles of
+    the same rotation ``q``."""
     a, b, c = abc
-    if -90.0 <= b <= 90.0 and -180.0 < a <= 180.0 and -180.0 < c <= 180.0:
+    locked = abs(abs(b) - 90.0) < 1e-9 and c != 0.0
+    if -90.0 <= b <= 90.0 and -180.0 < a <= 180.0 and -180.0 < c <= 180.0 and not locked:
         return abc
     return quat_to_abc(q)
 
