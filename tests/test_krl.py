@@ -421,12 +421,82 @@ def test_missing_enddat():
 
 
 def test_text_after_enddat_and_statement_before_defdat():
-    with pytest.raises(UcsioError, match="syntax error") as e:
+    with pytest.raises(UcsioError, match="after ENDDAT") as e:
         krl.parse(doc_of(wrap("") + "INT i=1\n"), full=True)
     assert e.value.line == 5
     with pytest.raises(UcsioError) as e:
         krl.parse(doc_of("INT i=1\nDEFDAT X\nENDDAT\n"), full=True)
     assert e.value.line == 2 and "DEFDAT" in e.value.message
+
+
+# the layout (& headers, DEFDAT, ENDDAT): the fast path checks it too, with the
+# same error at the same place as `check`, though it parses only a few lines
+BASE1 = "BASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n"
+LAYOUT = [
+    ("statement after ENDDAT", "DEFDAT X\n" + BASE1 + "ENDDAT\nBASE_DATA[2]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n",
+     4, 1, "unexpected 'BASE_DATA' after ENDDAT"),
+    ("statement after ENDDAT and comments", "DEFDAT X\n" + BASE1 + "ENDDAT\n\n;c\n  ; d\nINT i\n;e\n",
+     7, 1, "unexpected 'INT' after ENDDAT"),
+    ("header after ENDDAT", "DEFDAT X\n" + BASE1 + "ENDDAT\n;c\n&ACCESS RV\n", 5, 1, "after ENDDAT"),
+    ("second ENDDAT", "DEFDAT X\n" + BASE1 + "ENDDAT\nENDDAT\n", 4, 1, "after ENDDAT"),
+    ("text on the ENDDAT line", "DEFDAT X\n" + BASE1 + "ENDDAT X\n", 3, 8, "unexpected 'X'"),
+    ("two DEFDAT lines", "DEFDAT X\nDEFDAT Y\n" + BASE1 + "ENDDAT\n", 2, 1,
+     "unexpected DEFDAT: DEFDAT must come first"),
+    ("a later DEFDAT line", "&ACCESS RV\nDEFDAT X\n" + BASE1 + "INT i=1\nDEFDAT Y\nENDDAT\n", 5, 1,
+     "unexpected DEFDAT"),
+    ("DEFDAT without a name", "DEFDAT\n" + BASE1 + "ENDDAT\n", 1, 7, "expected a name"),
+    ("DEFDAT PUBLIC PUBLIC", "DEFDAT X PUBLIC PUBLIC\n" + BASE1 + "ENDDAT\n", 1, 17,
+     "unexpected 'PUBLIC'"),
+    ("header after DEFDAT", "&ACCESS RV\nDEFDAT X\n&REL 1\n" + BASE1 + "ENDDAT\n", 3, 1,
+     "unexpected '&REL 1'"),
+    ("header in a fragment", "INT i=1\n" + BASE1 + "&REL 1\n", 3, 1, "unexpected '&REL 1'"),
+    ("statement before DEFDAT", "INT i=1\nDEFDAT X\n" + BASE1 + "ENDDAT\n", 2, 1,
+     "DEFDAT must come first"),
+    ("statement between headers", "&ACCESS RV\nINT i=1\n&REL 1\nDEFDAT X\n" + BASE1 + "ENDDAT\n",
+     4, 1, "DEFDAT must come first"),
+    ("ENDDAT= in the body", "DEFDAT X\n" + BASE1 + "ENDDAT=5\nENDDAT\n", 3, 7, "unexpected '='"),
+    ("missing ENDDAT", "&ACCESS RV\nDEFDAT X\n" + BASE1 + ";ENDDAT\n", 5, 1, "missing ENDDAT"),
+    ("ENDDAT in a fragment", "INT i\nENDDAT X\n" + BASE1, 2, 1, "unexpected ENDDAT"),
+]
+
+
+@pytest.mark.parametrize("name,text,lineno,col,msg", LAYOUT, ids=[c[0] for c in LAYOUT])
+def test_layout_errors_are_the_same_on_both_paths(name, text, lineno, col, msg):
+    doc = doc_of(text, "t.dat")
+    errors = []
+    for full in (True, False):
+        with pytest.raises(UcsioError) as e:
+            krl.parse(doc, full=full)
+        errors.append(e.value)
+    assert (errors[0].line, errors[0].col) == (lineno, col)
+    assert msg in errors[0].message and "\n" not in str(errors[0])
+    assert str(errors[1]) == str(errors[0])
+
+
+def test_the_fast_path_reads_the_layout_lines_only():
+    text = ("&ACCESS RV\n;c\n&REL 1\nDEFDAT X PUBLIC\nINT i=1\n" + BASE1 + "INT j=2\nENDDAT\n"
+            ";c\n\nINT k\nINT l\n")
+    assert selected(text) == ["&ACCESS RV", "&REL 1", "DEFDAT X PUBLIC", BASE1[:-1], "ENDDAT",
+                              "INT k"]
+    # a fragment: its first statement
+    assert selected(";c\n\n  INT i=1\nINT j\n" + BASE1) == ["  INT i=1", BASE1[:-1]]
+
+
+@pytest.mark.parametrize("text", [
+    # comment and blank lines before, between and after the header lines
+    "&ACCESS RVP\n;a comment\n&REL 1\n\n  ;another\n\n&PARAM X = Y\n;c\nDEFDAT T\n" + BASE1 + "ENDDAT\n",
+    ";first\n;second\n\n&ACCESS RVP\nDEFDAT T PUBLIC ; c\n;c\n" + BASE1 + "ENDDAT",
+    # blank, white and comment lines after ENDDAT
+    "DEFDAT T\n" + BASE1 + "ENDDAT ; end\n\n \t\r\n;c\n  ;d\n\n",
+    "DEFDAT T\n" + BASE1 + "ENDDAT\n;FOLD\n;ENDFOLD",
+    # DEFDAT and ENDDAT spelt as other names inside the data list
+    "DEFDAT T\n" + BASE1 + "DEFDAT[1]=5\nDECL INT ENDDAT\nENDDAT\n",
+    # a fragment
+    ";c\n\nINT i=1\n;c\n" + BASE1 + "\n",
+])
+def test_comment_and_blank_lines_anywhere_around_the_layout(text):
+    cf = both(doc_of(text))
+    assert [f.name for f in cf.frames] == ["BASE_DATA[1]"]
 
 
 def test_out_of_range_real():
@@ -465,6 +535,27 @@ def test_lints():
     assert lint_codes('TOOL_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\nTOOL_DATA[2]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n'
                       'TOOL_NAME[1,]="same"\nTOOL_NAME[2,]="SAME"\n') == [("duplicate-label", 7)]
     assert lint_codes('TOOL_DATA[1]={X 1,Y 2,Z 3,A 4,B 5,C 6}\nTOOL_NAME[1,]=5\n') == [("bad-label", 5)]
+
+
+def test_labels_are_stripped_on_both_sides():
+    cf = both(doc_of(wrap(BASE1 + 'BASE_NAME[1,]="  padded  "\n')))
+    fr = cf.frame("BASE_DATA[1]")
+    assert fr.label == "padded"
+    assert cf.frame("padded") is cf.frame("  PADDED ") is fr
+
+
+def test_base_on_an_external_kinematic_names_the_kinematic_not_its_parent():
+    base2 = "BASE_DATA[2]={X 1,Y 2,Z 3,A 4,B 5,C 6}\n"
+    cf = both(doc_of(wrap(BASE1 + base2
+                          + 'MACHINE_DEF[2]={NAME[] "DKP-400 ",PARENT[] "WORLD"}\n'
+                          'MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 2,PARENT[] "WORLD"}\n'
+                          'MACHINE_FRAME_DAT[2]={MACH_DEF_INDEX 3,PARENT[] "  "}\n')))
+    msgs = [lint.message for lint in cf.lints if lint.code == "base-not-world"]
+    assert msgs == [
+        'BASE_DATA[1] is relative to external kinematic 2 "DKP-400" (MACHINE_FRAME_DAT[1]: '
+        'MACH_DEF_INDEX 2, parent WORLD), not to world',
+        "BASE_DATA[2] is relative to external kinematic 3 (MACHINE_FRAME_DAT[2]: "
+        "MACH_DEF_INDEX 3), not to world"]
 
 
 def test_labels_resolve_case_insensitively_and_blank_labels_are_none():

@@ -12,10 +12,15 @@ grammar:
   matter for frames: FRAME declarations, element lines of FRAME arrays,
   the TOOL/BASE name and type tables, LOAD_DATA, the MAX_* sizes, and the
   MACHINE_FRAME_DAT entries that tie a base to an external kinematic (with
-  the MACHINE_DEF entries they name). Every other character is replaced by a
-  space (newlines kept), so offsets and line numbers are those of the real
-  file, and Lark parses that masked text in one call (start symbol
-  ``lines``). A value repeated on several element lines (zero frames, unset
+  the MACHINE_DEF entries they name); and the lines that make the file's
+  layout (``_layout_lines``: the ``&`` header lines, the DEFDAT and ENDDAT
+  lines, the first statement line, the first one after ENDDAT). Every other
+  character is replaced by a space (newlines kept), so offsets and line
+  numbers are those of the real file, and Lark parses that masked text in
+  one call, with the same start symbol ``file``: a layout ``check`` rejects
+  (text after ENDDAT, a second or malformed DEFDAT, a header or a statement
+  before DEFDAT where it cannot be, no ENDDAT) fails the fast path too, with
+  the same message at the same place. A value repeated on several element lines (zero frames, unset
   loads) is given to Lark once: the later copies become a placeholder and
   share the first one's tree, moved to their own offsets. A 120 KB
   $config.dat costs about 200 short lines and 1,800 tokens of Lark, not
@@ -44,7 +49,7 @@ from .errors import UcsioError
 from .frames import Frame, Number, Pose
 
 VENDOR = "kuka"
-START = ("file", "lines")
+START = ("file",)
 # What TOOL_TYPE[n] / BASE_TYPE[n] (ENUM IPO_M_T: the interpolation mode the
 # entry is used with) say. FORMATS.md 2.7 [M] read TOOL_TYPE #BASE as "external
 # TCP, relative to world" and BASE_TYPE #TCP as "relative to the flange". The
@@ -83,7 +88,11 @@ _MODS = _WS + r"*(?:(?:DECL|GLOBAL|CONST)" + _WS + r"+)*"
 _DECL_LINE = re.compile(r"\n(" + _MODS + r"(?:(FRAME)" + _WS + r"|INT" + _WS + r"+MAX_)[^\n]*)",
                         re.I)
 _DEFDAT = re.compile(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]+(PUBLIC)\b)?", re.I | re.M)
-_ENDDAT = re.compile(r"\n[ \t\f\r]*ENDDAT\b", re.I)
+# the layout lines: `&` headers (group 1 unset) and lines that start with the
+# word DEFDAT or ENDDAT as the grammar's NAME would end it (group 1 "E" for
+# ENDDAT); and statement lines: not blank, not a comment, not a header
+_LAYOUT_LINE = re.compile(r"\n[ \t\f\r]*(?:&|(?:DEF|(END))DAT(?![A-Za-z0-9_$]))", re.I)
+_STATEMENT_LINE = re.compile(r"\n[ \t\f\r]*[^ \t\f\r\n;&]")
 _IDENT = re.compile(r"[A-Za-z_$][\w$]*")
 _BRACED = re.compile(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
 # the left-hand side of an element line: NAME, NAME[...]
@@ -140,7 +149,38 @@ def outline(text: str) -> list[tuple[int, int]]:
             spans.append(span)
     if mframes:
         spans += _machine_lines(mframes, mdefs)
-    spans.sort()
+    spans += _layout_lines(text, nl_text)
+    return sorted(set(spans))
+
+
+def _layout_lines(text: str, nl_text: str) -> list[tuple[int, int]]:
+    """The lines that decide whether the file's layout is what the grammar's
+    ``file`` accepts, as spans: every ``&`` header line, every line that
+    starts with the word DEFDAT or ENDDAT, the first statement line (what
+    comes first after the headers: DEFDAT, or a fragment's first statement)
+    and the first statement line after each ENDDAT line (the grammar allows
+    only blank and comment lines there). Statement lines are independent of
+    each other, so with these lines kept, the masked text breaks the layout
+    exactly where the file does; the lines left out can only hold errors
+    within a statement, which ``check`` finds."""
+    spans = []
+    n = len(text)
+
+    def line(m) -> tuple[int, int]:
+        start = m.start()               # nl_text offset of the "\n" = text offset of the line
+        end = text.find("\n", start)
+        return start, n if end < 0 else end
+
+    first = _STATEMENT_LINE.search(nl_text)
+    if first is not None:
+        spans.append(line(first))
+    for m in _LAYOUT_LINE.finditer(nl_text):
+        span = line(m)
+        spans.append(span)
+        if m.group(1) is not None:     # ENDDAT: what follows it
+            after = _STATEMENT_LINE.search(nl_text, span[1] + 1)
+            if after is not None:
+                spans.append(line(after))
     return spans
 
 
@@ -202,10 +242,10 @@ def _shared_values(text: str, spans: list[tuple[int, int]]):
 
 
 def _shared_parse(doc: Document, text: str, spans):
-    """The statements of the masked text, Lark reading each repeated value
-    once (_shared_values); None when that is not possible here (a syntax
-    error, or a shared value not read as an assignment): the caller then
-    parses the masked text as it is, with its exact error."""
+    """(statements, tree) of the masked text, Lark reading each repeated
+    value once (_shared_values); None when that is not possible here (a
+    syntax error, or a shared value not read as an assignment): the caller
+    then parses the masked text as it is, with its exact error."""
     from lark import Token
     from lark.exceptions import LarkError
 
@@ -221,7 +261,8 @@ def _shared_parse(doc: Document, text: str, spans):
         pos = e
     pieces.append(mtext[pos:])
     try:
-        stmts = _statements(_parser().parse("".join(pieces), start="lines"), doc)
+        tree = _parser().parse("".join(pieces), start="file")
+        stmts = _statements(tree, doc)
     except (LarkError, UcsioError):
         return None
     assigns = {st.start: st for st in stmts if st.kind == "assign"}
@@ -233,7 +274,7 @@ def _shared_parse(doc: Document, text: str, spans):
             return None
         st.value = first.value
         st.delta = delta
-    return stmts
+    return stmts, tree
 
 
 def masked(text: str, spans: list[tuple[int, int]]) -> str:
@@ -294,6 +335,9 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
             if "RSQB" in expected:
                 return doc.error("unterminated index: missing ']' before the end of the line", pos)
             return doc.error("unexpected end of line" + _expecting(expected), pos)
+        if expected == {"_NL", "$END"}:     # only after ENDDAT
+            return doc.error(f"unexpected {tok.value!r} after ENDDAT: only blank and comment "
+                             f"lines may follow the data list", pos)
         if tok.type == "ENDDAT" or tok.type == "DEFDAT":
             return doc.error(f"unexpected {tok.value}" + _expecting(expected), pos)
         return doc.error(f"syntax error: unexpected {tok.value!r}" + _expecting(expected), pos)
@@ -422,13 +466,9 @@ def _statements(tree, doc: Document):
     """decl and assign statements of the tree, simplified, in order."""
     from lark import Tree
 
-    if tree.data == "file":
-        body = tree.children[-1]
-        items = body.children
-    else:
-        items = tree.children
     out = []
-    for st in items:
+    for st in tree.children:        # file: headers, then defdat or the statements
+
         if not isinstance(st, Tree):
             continue
         d = st.data
@@ -476,23 +516,18 @@ def _statements(tree, doc: Document):
                 s.index = [int(t.value) for t in ch[1].children]
             s.value = ch[-1]
             out.append(s)
-        elif d in ("defdat", "lines"):
+        elif d == "defdat":
             out.extend(_statements(st, doc))
     return out
 
 
-def _defdat(tree, text: str, full: bool):
-    if full:
-        body = tree.children[-1]
-        if body.data == "defdat":
+def _defdat(tree):
+    for body in tree.children:
+        if getattr(body, "data", None) == "defdat":
             ch = body.children
             return {"name": ch[1].value, "public": any(getattr(c, "type", None) == "PUBLIC"
                                                        for c in ch[2:4])}
-        return None
-    m = _DEFDAT.search(text)
-    if m is None:
-        return None
-    return {"name": m.group(1), "public": m.group(2) is not None}
+    return None
 
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:
@@ -504,20 +539,18 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     if full:
         tree = _parse(doc, text, "file")
         stmts = _statements(tree, doc)
-        defdat = _defdat(tree, text, True)
     else:
-        # the structure the fast path does not parse, checked cheaply
-        m = _DEFDAT.search(text)
-        if m is not None and _ENDDAT.search("\n" + text, m.end() + 1) is None:
-            raise doc.error("missing ENDDAT: the DEFDAT data list is never closed", len(text))
+        # the frame lines and the layout lines (outline), the rest blanked out
         spans = outline(text)
-        stmts = _shared_parse(doc, text, spans)
-        if stmts is None:
-            stmts = _statements(_parse(doc, masked(text, spans), "lines"), doc)
-        defdat = _defdat(None, text, False)
+        got = _shared_parse(doc, text, spans)
+        if got is None:
+            tree = _parse(doc, masked(text, spans), "file")
+            stmts = _statements(tree, doc)
+        else:
+            stmts, tree = got
     cf = ControllerFile(document=doc, vendor=VENDOR)
     _Interpreter(doc, cf).run(stmts)
-    cf.extra["defdat"] = defdat
+    cf.extra["defdat"] = _defdat(tree)
     return cf
 
 
@@ -709,7 +742,9 @@ class _Interpreter:
                           f"keeps {LABEL_MAX}")
             if '"' in label:
                 self.lint(pos, "label-quote", f'{kind}_NAME[{n},] contains \'"\'')
-            label = label.rstrip(" ")
+            # both sides: the controller pads with spaces, and names given
+            # on the command line are matched stripped
+            label = label.strip()
             fr.label = label or None
             fr.info["label_offset"] = pos
         t = types.get((kind, n))
@@ -733,10 +768,11 @@ class _Interpreter:
             fr.info["machine"] = dict(mach)
             if mach["index"] in machines:
                 fr.info["machine"]["definition"] = machines[mach["index"]]
+        if fr.reference == "machine":
+            where = _kinematic(n, mach, machines.get(mach["index"]))
+        elif fr.reference != "world":
+            where = "an unknown frame"
         if fr.reference != "world":
-            where = {"machine": f"external kinematic {mach and (mach['parent'] or mach['index'])}"
-                                f" (MACHINE_FRAME_DAT[{n}].MACH_DEF_INDEX "
-                                f"{mach and mach['index']})"}.get(fr.reference, "an unknown frame")
             self.lint(self._line_offset(fr), "base-not-world",
                       f"{fr.name} is relative to {where}, not to world")
 
@@ -760,6 +796,19 @@ class _Interpreter:
                       f"label {shown!r} names {which}: refer to them by entry name")
         for fr in self.cf.frames:
             fr.info.pop("label_offset", None)
+
+
+def _kinematic(n: int, mach: dict, definition) -> str:
+    """'external kinematic 2 "DKP-400" (MACHINE_FRAME_DAT[3]: MACH_DEF_INDEX 2,
+    parent DKP-400)': the kinematic is MACHINE_DEF[index], named by its NAME
+    when the file has it; PARENT is the frame the base hangs from."""
+    k = mach["index"]
+    name = (definition or {}).get("name")
+    named = f' "{name}"' if isinstance(name, str) and name.strip() else ""
+    parent = mach.get("parent")
+    par = f", parent {parent.strip()}" if parent and parent.strip() else ""
+    return (f"external kinematic {k}{named} (MACHINE_FRAME_DAT[{n}]: MACH_DEF_INDEX {k}"
+            f"{par})")
 
 
 def _mods_info(mods) -> dict:
