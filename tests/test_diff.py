@@ -197,3 +197,19 @@ def test_per_axis_deltas_use_canonical_angles():
     # the same rotation written out of SPEC's ranges: no per-axis difference
     d = frame_delta(Pose.from_abc(1, 2, 3, 200, 100, -181), Pose.from_abc(1, 2, 3, 20, 80, -1))
     assert (d["da"], d["db"], d["dc"], d["angle"]) == pytest.approx((0, 0, 0, 0), abs=1e-9)
+
+
+def test_two_file_review_shows_what_frame_values_cannot(tmp_path, capsys):
+    import shutil
+    src = FIXTURES / "patch" / "refs" / "$config.dat"
+    old = tmp_path / "old.dat"
+    shutil.copy(src, old)
+    text = old.read_bytes()
+    line = next(ln for ln in text.split(b"\n") if ln.startswith(b"BASE_DATA[1]="))
+    # a rewrite within float32 noise is no frame change, but its text still shows
+    noisy = tmp_path / "noisy.dat"
+    noisy.write_bytes(text.replace(line, line.replace(b"{X ", b"{X 0000", 1)))
+    assert main(["diff", str(old), str(noisy)]) == 0
+    out = capsys.readouterr().out
+    assert "no frame changed" in out and "lines changed beyond the frame values above" in out
+    assert "+BASE_DATA[1]={X 0000" in out

@@ -101,12 +101,12 @@ def test_external_diff_never_hides_other_changes(repo):
     patch(repo, "R01/cell.mod", "--frame", "wobjPlain", "--set=1,2,3,0,0,0")
     out = git(repo, "diff")
     assert "~ wobjPlain.oframe" not in out and "~ wobjPlain (wobjdata): value changed" in out
-    assert "lines outside frame values changed" not in out
+    assert "lines changed beyond the frame values" not in out
     # a comment changed as well: the text diff follows the frame summary
     path = repo / "R01" / "cell.mod"
     path.write_bytes(path.read_bytes().replace(b"one frame per refusal rule", b"one frame per rule"))
     out = git(repo, "diff")
-    assert "lines outside frame values changed too" in out
+    assert "lines changed beyond the frame values above" in out
     assert "+    ! ucsio patch fixture: one frame per rule, and SPEC's diff example." in out
     # no frame changed at all, but a routine did: still shown
     git(repo, "checkout", "--", ".")

@@ -180,14 +180,25 @@ def textconv(cf: ControllerFile) -> str:
     return f"# ucsio: {len(cf.frames)} frames\n{head}# ucsio: the file\n{text}\n"
 
 
-def _pose_text(d: dict) -> str:
+def _pose_text(d: dict, extra: int = 0) -> str:
+    """A pose at the written precision (+ ``extra`` digits, to show a change
+    that the written precision would round away)."""
     if d.get("x") is None:
         return "no value"
-    s = f"x {d['x']:.3f}  y {d['y']:.3f}  z {d['z']:.3f}  " \
-        f"a {d['a']:.4f}  b {d['b']:.4f}  c {d['c']:.4f}"
+    t, a, q = 3 + extra, 4 + extra, 6 + extra
+    s = f"x {d['x']:.{t}f}  y {d['y']:.{t}f}  z {d['z']:.{t}f}  " \
+        f"a {d['a']:.{a}f}  b {d['b']:.{a}f}  c {d['c']:.{a}f}"
     if d.get("vendor") == "abb" and d.get("q"):
-        s += "  q [" + ", ".join(f"{c:.6f}" for c in d["q"]) + "]"
+        s += "  q [" + ", ".join(f"{c:.{q}f}" for c in d["q"]) + "]"
     return s
+
+
+def _pose_pair(old: dict, new: dict) -> tuple[str, str]:
+    for extra in (0, 3, 6):
+        a, b = _pose_text(old, extra), _pose_text(new, extra)
+        if a != b:
+            break
+    return a, b
 
 
 def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) -> str:
@@ -203,11 +214,15 @@ def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) ->
                          f"da {c['da']:+.4f}  db {c['db']:+.4f}  dc {c['dc']:+.4f} deg  "
                          f"angle {c['angle']:.4f} deg  dist {c['dist']:.3f} mm  "
                          f"dt_mean {c['dt_mean']:.3f} mm (group {c['group']})")
-        lines.append(f"    - {_pose_text(c['old'])}")
-        lines.append(f"    + {_pose_text(c['new'])}")
+        if "value" in c["changes"]:
+            old_text, new_text = _pose_pair(c["old"], c["new"])
+            lines.append(f"    - {old_text}")
+            lines.append(f"    + {new_text}")
+        else:
+            lines.append(f"      {_pose_text(c['new'])}")
         for k in c["changes"]:
             if k != "value":
-                lines.append(f"    {k}: {c['old'].get(k)!r} -> {c['new'].get(k)!r}")
+                lines.append(f"    {k}: {_info_text(c['old'].get(k))} -> {_info_text(c['new'].get(k))}")
     for a in result["added"]:
         lines.append(f"+ {a['name']} ({a['type']}) added: {_pose_text(a)}")
     for r in result["removed"]:
@@ -229,39 +244,58 @@ def load_as(path: str, display: str) -> ControllerFile | None:
     return parse(doc)
 
 
+def files_diff_text(old: ControllerFile | None, new: ControllerFile | None,
+                    old_label: str, new_label: str) -> tuple[str, dict]:
+    """The two-file review: the frame changes, then the text diff whenever
+    lines outside the reported frames' values changed too, so that a changed
+    comment, load, robtarget or routine is never hidden behind "no frame
+    changed". Returns the text and the structured result."""
+    result = diff_files(old, new)
+    text = format_files_diff(result, old_label, new_label)
+    reported = {x["name"] for key in ("changed", "added", "removed") for x in result[key]}
+    if _other_lines_changed(old, new, reported):
+        text += "  lines changed beyond the frame values above; text diff:\n"
+        text += _unified(_lines(old), _lines(new),
+                         "/dev/null" if old is None else f"a/{old_label}",
+                         "/dev/null" if new is None else f"b/{new_label}")
+    return text, result
+
+
 def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]:
     """Text (and the structured result, or None when the files could not be
-    parsed) for git's external diff driver: the frame changes, then the text
-    diff whenever lines outside frame values changed too, so that a changed
-    comment, robtarget or routine is never hidden behind "no frame changed"."""
+    parsed) for git's external diff driver."""
     try:
         old, new = load_as(old_file, path), load_as(new_file, path)
-        result = diff_files(old, new)
     except UcsioError as exc:
         return (f"ucsio diff a/{path} b/{path}\n  not a controller file ucsio can read ({exc}); "
                 "plain text diff:\n" + plain_diff(path, old_file, new_file)), None
-    text = format_files_diff(result, path, path)
-    if _other_lines_changed(old, new):
-        text += "  lines outside frame values changed too; text diff:\n"
-        text += plain_diff(path, old_file, new_file)
-    return text, result
+    return files_diff_text(old, new, path, path)
+
+
+def _unified(a: list[str], b: list[str], old_label: str, new_label: str) -> str:
+    return "\n".join(difflib.unified_diff(a, b, old_label, new_label, lineterm="")) + "\n"
 
 
 def _lines(cf: ControllerFile | None) -> list[str]:
     return [] if cf is None else text_lines(cf.document.text)
 
 
-def _frame_lines(cf: ControllerFile | None) -> set[int]:
-    """0-based numbers of the lines that hold frame values."""
+def _frame_lines(cf: ControllerFile | None, names: set[str]) -> set[int]:
+    """0-based numbers of the lines that hold the values of the frames named."""
     if cf is None:
         return set()
     doc = cf.document
-    return {doc.line_of(n.span.start) - 1 for f in cf.frames for n in f.numbers.values()}
+    return {doc.line_of(n.span.start) - 1 for f in cf.frames if f.name in names
+            for n in f.numbers.values()}
 
 
-def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None) -> bool:
+def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None,
+                         reported: set[str]) -> bool:
+    """Whether lines changed beyond the values of the frames ``reported``
+    (a frame rewritten within float32 noise counts as such a line: the
+    reviewer sees its text change rather than nothing)."""
     a, b = _lines(old), _lines(new)
-    fa, fb = _frame_lines(old), _frame_lines(new)
+    fa, fb = _frame_lines(old, reported), _frame_lines(new, reported)
     matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
     for tag, i1, i2, j1, j2 in matcher.get_opcodes():
         if tag == "equal":
@@ -278,9 +312,7 @@ def plain_diff(path: str, old_file: str, new_file: str) -> str:
         return text_lines(Document.read(p).text)
     old_label = "/dev/null" if _is_devnull(old_file) else f"a/{path}"
     new_label = "/dev/null" if _is_devnull(new_file) else f"b/{path}"
-    out = difflib.unified_diff(lines(old_file), lines(new_file), old_label, new_label,
-                               lineterm="")
-    return "\n".join(out) + "\n"
+    return _unified(lines(old_file), lines(new_file), old_label, new_label)
 
 
 def textconv_file(path: str) -> str:
@@ -296,4 +328,4 @@ def textconv_file(path: str) -> str:
 
 
 __all__ = ["diff_frame", "diff_files", "frame_changes", "textconv", "frame_line",
-           "format_files_diff", "git_diff", "textconv_file"]
+           "format_files_diff", "files_diff_text", "git_diff", "textconv_file"]

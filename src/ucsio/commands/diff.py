@@ -62,13 +62,12 @@ def run(args) -> int:
         raise UcsioError("usage: ucsio diff OLD NEW | ucsio diff FILE --frame NAME "
                          "--measured SOLUTION.json | ucsio diff --textconv FILE")
     from ..controller import load
-    from ..review import diff_files, format_files_diff
-    old, new = load(files[0]), load(files[1])
-    result = diff_files(old, new)
+    from ..review import files_diff_text
+    text, result = files_diff_text(load(files[0]), load(files[1]), files[0], files[1])
     if args.json:
         emit_json(result)
     else:
-        sys.stdout.write(format_files_diff(result, files[0], files[1]))
+        sys.stdout.write(text)
     return 0
 
 
