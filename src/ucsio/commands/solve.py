@@ -133,9 +133,10 @@ def render(sol) -> str:
         s, ci, an = u["std"], u["ci95"], u["analytical_std"]
         lines.append(f"uncertainty ({u['samples']} samples, sigma laser {u['sigma_laser']:g},"
                      f" robot {u['sigma_robot']:g} mm):")
-        urows = [[k, f"{s[k]:.4f}", f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
+        urows = [[k, "deg" if k == "angle" else "mm", f"{s[k]:.4f}",
+                  f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
                  for k in ("x", "y", "z", "angle")]
-        lines.append(table(["", "std", "ci95", "analytical std"], urows, right={1, 3}))
+        lines.append(table(["", "unit", "std", "ci95", "analytical std"], urows, right={2, 4}))
     lines.extend(f"warning: {w}" for w in sol.warnings)
     lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
     return "\n".join(lines) + "\n"
