@@ -210,7 +210,7 @@ def test_load_solution_variants(tmp_path):
     f.write_text('{"x": 1,\n "y": }')
     with pytest.raises(UcsioError, match=r"s\.json:2:\d+: not valid JSON"):
         load_solution(f)
-    with pytest.raises(UcsioError, match="cannot read"):
+    with pytest.raises(UcsioError, match=r"no such file \(the solution file\)"):
         load_solution(tmp_path / "missing.json")
 
 
@@ -335,7 +335,7 @@ def test_cli_bad_measurement_names_line(capsys, tmp_path):
     assert rc == 2 and f"{f}:12:4: laser_x not a number" in err
     assert not out_file.exists()
     rc, out, err = run_cli(capsys, str(tmp_path / "missing.csv"))
-    assert rc == 2 and "cannot read" in err
+    assert rc == 2 and "no such file (the measurement file)" in err
 
 
 def test_cli_collinear_exit_2(capsys, tmp_path):

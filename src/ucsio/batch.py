@@ -39,7 +39,7 @@ import numpy as np
 from .defaults import MIN_POINTS, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
 from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
-from .files import atomic_write_text
+from .files import atomic_write_text, read_bytes
 from .frames import Pose, tool_tcp
 from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
 
@@ -190,11 +190,7 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     [[entry]] (an unknown key, a missing frame, a mistyped value) only makes
     that entry fail: its ``problem``, reported as its error by run_batch."""
     path = os.fspath(path)
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read()
-    except OSError as exc:
-        raise UcsioError(f"cannot read manifest: {exc.strerror or exc}", file=path) from None
+    raw = read_bytes(path, "manifest")
     try:
         text = raw.decode("utf-8")      # TOML is UTF-8 (tomllib would raise UnicodeDecodeError)
     except UnicodeDecodeError as exc:

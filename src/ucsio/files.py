@@ -1,4 +1,5 @@
-"""Writing files the only safe way: never half-written.
+"""Reading files with one clear error, and writing them the only safe way:
+never half-written.
 
 Every file ucsio writes (patched controller files, solutions, CSV, reports)
 goes to a temporary file in the same folder, is flushed to disk, and replaces
@@ -68,3 +69,17 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
 def atomic_write_text(path: str | os.PathLike, text: str) -> None:
     """UTF-8 text, newlines as given."""
     atomic_write(path, text.encode("utf-8"))
+
+
+def read_bytes(path: str | os.PathLike, what: str = "file") -> bytes:
+    """The bytes of ``path``; a missing file, a folder or an unreadable file
+    is one UcsioError naming it (exit 2)."""
+    try:
+        with open(path, "rb") as fh:
+            return fh.read()
+    except FileNotFoundError:
+        raise UcsioError(f"no such file (the {what})", file=os.fspath(path)) from None
+    except IsADirectoryError:
+        raise UcsioError(f"is a directory, not a {what}", file=os.fspath(path)) from None
+    except OSError as exc:
+        raise UcsioError(f"cannot read {what}: {exc.strerror or exc}", file=os.fspath(path)) from None

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import UcsioError
+from .files import read_bytes
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),
@@ -184,11 +185,7 @@ def _decode(raw: bytes, path: str) -> str:
 def read_measurement(path: str | os.PathLike) -> Measurement:
     """Read a measurement CSV; UcsioError (exit 2) on anything wrong."""
     path = os.fspath(path)
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read()
-    except OSError as exc:
-        raise UcsioError(f"cannot read measurement file: {exc.strerror or exc}", file=path) from None
+    raw = read_bytes(path, "measurement file")
     return parse_measurement(_decode(raw, path), path)
 
 

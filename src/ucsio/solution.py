@@ -12,6 +12,7 @@ from typing import Any
 
 from . import rotations as rot
 from .errors import RejectedDataset, UcsioError
+from .files import read_bytes
 from .frames import Pose
 
 
@@ -22,11 +23,7 @@ def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose
     ``allow_rejected``; q and a, b, c given together must agree. A file that
     is not UTF-8 (a BOM is allowed) is a UcsioError, like bad JSON."""
     path = os.fspath(path)
-    try:
-        with open(path, "rb") as fh:
-            raw = fh.read()
-    except OSError as exc:
-        raise UcsioError(f"cannot read solution: {exc.strerror or exc}", file=path) from None
+    raw = read_bytes(path, "solution file")
     bom = 3 if raw.startswith(b"\xef\xbb\xbf") else 0
     try:
         text = raw[bom:].decode("utf-8")
