@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import bisect
 import os
-from pathlib import Path
 
 from .errors import UcsioError
+from .files import read_bytes
 from .values import Value
 
 BOM = b"\xef\xbb\xbf"
@@ -63,16 +63,7 @@ class Document:
     # -- reading ---------------------------------------------------------
     @classmethod
     def read(cls, path: str | os.PathLike) -> "Document":
-        p = Path(path)
-        try:
-            raw = p.read_bytes()
-        except FileNotFoundError:
-            raise UcsioError("no such file", file=str(path)) from None
-        except IsADirectoryError:
-            raise UcsioError("is a directory, not a controller file", file=str(path)) from None
-        except OSError as exc:
-            raise UcsioError(f"cannot read: {exc.strerror}", file=str(path)) from None
-        return cls(raw, path)
+        return cls(read_bytes(path, "controller file"), path)
 
     # -- positions -------------------------------------------------------
     @property
