@@ -9,7 +9,6 @@ and no temporary file behind.
 from __future__ import annotations
 
 import os
-import tempfile
 
 from .errors import UcsioError
 
@@ -21,6 +20,8 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
     (0666 less the umask, not mkstemp's 0600). ``check()`` runs just before
     the rename and may raise to abort. The temporary file never outlives a
     failure; OS errors become one UcsioError naming the file."""
+    import tempfile   # only writers pay for it: listing starts without it
+
     path = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
