@@ -355,38 +355,32 @@ class BatchResult:
 
 
 class _Cache:
-    """Each file read once: controller files, measurements; errors too."""
+    """Each file read once: controller files, measurements; errors too (a
+    broken file fails every entry that names it, with the same message)."""
 
     def __init__(self):
         self.controllers: dict[str, Any] = {}
         self.measurements: dict[str, Any] = {}
 
-    def controller(self, path: str):
-        if path not in self.controllers:
-            from .controller import load
+    @staticmethod
+    def _get(store: dict[str, Any], path: str, read):
+        if path not in store:
             try:
-                self.controllers[path] = load(path)
+                store[path] = read(path)
             except UcsioError as exc:
-                self.controllers[path] = exc
-            except OSError as exc:
-                self.controllers[path] = UcsioError(
-                    f"cannot read controller file: {exc.strerror or exc}", file=path)
-        got = self.controllers[path]
+                store[path] = exc
+        got = store[path]
         if isinstance(got, Exception):
             raise got
         return got
 
+    def controller(self, path: str):
+        from .controller import load
+        return self._get(self.controllers, path, load)
+
     def measurement(self, path: str):
-        if path not in self.measurements:
-            from .measurement import read_measurement
-            try:
-                self.measurements[path] = read_measurement(path)
-            except UcsioError as exc:
-                self.measurements[path] = exc
-        got = self.measurements[path]
-        if isinstance(got, Exception):
-            raise got
-        return got
+        from .measurement import read_measurement
+        return self._get(self.measurements, path, read_measurement)
 
 
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
