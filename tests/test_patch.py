@@ -176,11 +176,6 @@ def test_corpus_every_frame_patched_confined(path):
     """Every frame of every corpus file, patched with a perturbed copy of
     itself: the bytes change only inside that frame's numbers, and read back
     within the written precision. With its own values: no byte changes."""
-    if path.parent.name == "kuka":
-        try:
-            import ucsio.krl  # noqa: F401
-        except ImportError:
-            pytest.skip("the KUKA parser (ucsio.krl) is not available")
     cf = load(path)
     doc = cf.document
     rng = random.Random(path.name)
