@@ -12,7 +12,7 @@ import re
 import sys
 
 from . import __version__
-from .errors import UcsioError
+from .errors import UcsioError, UsageError
 
 COMMANDS = {
     "frames": "list every frame in controller files",
@@ -26,10 +26,44 @@ COMMANDS = {
 
 
 class _Parser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr and exit 2, like every other bad input."""
+    """Options are never abbreviated (``--in-plac`` must not mean
+    ``--in-place``); usage errors raise UsageError instead of exiting, so
+    ``main`` reports them like any bad input, with the nearest real name."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs["allow_abbrev"] = False
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str):
-        self.exit(2, f"{self.prog}: {message} (see {self.prog} --help)\n")
+        m = _INVALID_CHOICE.search(message)
+        if m:
+            message = m.group(1) + _did_you_mean(m.group(2), m.group(3).replace("'", "").split(", "))
+        raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
+
+
+_INVALID_CHOICE = re.compile(r"^(argument [^:]+: invalid choice: '(.*)') \(choose from (.*)\)$")
+
+
+def _did_you_mean(word: str, names) -> str:
+    import difflib
+    close = difflib.get_close_matches(word, list(names), n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def _refuse_unknown(parser: argparse.ArgumentParser, args, extras: list[str]) -> None:
+    """Arguments the chosen subcommand does not know: named, with the nearest
+    option of that subcommand suggested."""
+    sub = None
+    for action in parser._actions:                      # the subcommand's own parser
+        if isinstance(action, argparse._SubParsersAction):
+            sub = action.choices.get(getattr(args, "command", None))
+    target = sub or parser
+    message = "unrecognized arguments: " + " ".join(extras)
+    first = next((e for e in extras if e.startswith("-") and len(e) > 1), None)
+    if first is not None:
+        options = [o for a in target._actions for o in a.option_strings]
+        message += _did_you_mean(first.split("=", 1)[0], options)
+    raise UsageError(f"{target.prog}: {message} (see {target.prog} --help)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -63,17 +97,35 @@ _NEGATIVE_LIST = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
+    want_json = "--json" in argv           # before parsing: a usage error is JSON too
     try:
+        parser = build_parser()
+        args, extras = parser.parse_known_args(argv)
+        if extras:
+            _refuse_unknown(parser, args, extras)
+        want_json = bool(getattr(args, "json", False))
         return int(args._module.run(args) or 0)
     except UcsioError as exc:
-        print(f"ucsio: {exc}", file=sys.stderr)
+        report_error(exc, want_json)
         return exc.exit_code
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:
         return 0
+
+
+def report_error(exc: UcsioError, want_json: bool) -> None:
+    """One line on stderr; with --json also SPEC's error object on stdout."""
+    prefix = "" if isinstance(exc, UsageError) else "ucsio: "   # a usage line names its command
+    print(f"{prefix}{exc}", file=sys.stderr)
+    if want_json:
+        from .output import emit_json
+        emit_json({"error": error_dict(exc)})
+
+
+def error_dict(exc: UcsioError) -> dict:
+    return {"file": exc.file, "line": exc.line, "col": exc.col, "message": exc.message}
 
 
 def entry() -> None:

@@ -31,6 +31,11 @@ class UcsioError(Exception):
         return f"{where}{self.message}"
 
 
+class UsageError(UcsioError):
+    """A command line that does not fit the command (unknown or mistyped
+    option, options that do not go together): exit 2 like any bad input."""
+
+
 class RejectedDataset(UcsioError):
     """A solution whose dataset was rejected: SPEC counts that as a failed
     gate (exit 1), not as bad input."""

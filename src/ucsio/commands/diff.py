@@ -41,12 +41,14 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    from ..errors import UcsioError
+    from ..errors import UcsioError, UsageError
 
     files = args.files
     if args.textconv:
+        if args.json:
+            raise UsageError("ucsio diff: --textconv prints text for git; it does not go with --json")
         if len(files) != 1 or args.frame or args.measured:
-            raise UcsioError("--textconv takes exactly one FILE")
+            raise UsageError("ucsio diff: --textconv takes exactly one FILE")
         from ..review import textconv_file
         sys.stdout.write(textconv_file(files[0]))
         return 0
