@@ -75,12 +75,25 @@ class Pose(Value):
 
 
 class Number(Value):
-    """One numeric component as written: its span (sign included) and text."""
+    """One numeric component as written: its span and text, the sign included
+    where only blanks part it from the digits ("-0.5", "- 0.5"). A sign that a
+    comment or a line break parts from the digits (RAPID "- ! note\n670") is
+    not in the span, so a patch never replaces what stands between them:
+    ``signs`` holds such detached signs, outermost first, and ``value``
+    counts them; ``lead`` is their characters ("-")."""
 
-    __slots__ = ("span", "text", "value")
+    __slots__ = ("span", "text", "value", "signs", "lead")
 
-    def __init__(self, span: Span, text: str, value: float):
+    def __init__(self, span: Span, text: str, value: float, signs: tuple[Span, ...] = (),
+                 lead: str = ""):
         self.span, self.text, self.value = span, text, value
+        self.signs, self.lead = signs, lead
+
+    @property
+    def written(self) -> str:
+        """The number as a person reads it: detached signs, then the span's
+        text without blanks ("-670" for "- ! note\n670")."""
+        return self.lead + "".join(self.text.split())
 
 
 class Frame(Value):

@@ -141,7 +141,7 @@ def _translation_changes(frame: Frame, pose: Pose, point: bool) -> list[Change]:
         text = format_number(v, TRANS_DECIMALS, point=point, old_text=style)
         if _parse_text(text) == n.value:
             continue
-        out.append(Change(key, n.text, text, n.value, _parse_text(text)))
+        out.append(Change(key, n.written, text, n.value, _parse_text(text)))
     return out
 
 
@@ -184,9 +184,9 @@ def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
             if err <= 0.5 * QUAT_NORM_MAX:      # the fewest nudges that fit with margin
                 break
         vals = best[1]
-        texts = [nums[i].text if keep[i] else
+        texts = [nums[i].written if keep[i] else
                  format_number(vals[i], QUAT_DECIMALS, old_text=style) for i in range(4)]
-        parsed = [_parse_text(t) for t in texts]
+        parsed = [old[i] if keep[i] else _parse_text(texts[i]) for i in range(4)]
         if abs(sum(c * c for c in parsed) - 1.0) > QUAT_NORM_MAX:
             return None
         return texts, parsed
@@ -199,8 +199,8 @@ def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
     if result is None:  # pragma: no cover - rounding a unit quaternion always fits
         raise UcsioError(f"{frame.name}: cannot write a normalised quaternion", file=frame.file)
     texts, parsed = result
-    return [Change(f"q{i + 1}", nums[i].text, texts[i], nums[i].value, parsed[i])
-            for i in range(4) if not keep[i] and texts[i] != nums[i].text]
+    return [Change(f"q{i + 1}", nums[i].written, texts[i], nums[i].value, parsed[i])
+            for i in range(4) if not keep[i] and texts[i] != nums[i].written]
 
 
 def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
@@ -221,7 +221,7 @@ def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
         text = format_number(v, ANGLE_DECIMALS, point=True, old_text=style)
         if key in "ac" and _parse_text(text) == -180.0:
             text = format_number(180.0, ANGLE_DECIMALS, point=True, old_text=style)
-        out.append(Change(key, n.text, text, n.value, _parse_text(text)))
+        out.append(Change(key, n.written, text, n.value, _parse_text(text)))
     return out
 
 
@@ -242,7 +242,42 @@ def plan(frame: Frame, pose: Pose) -> list[Change]:
 
 
 def edits_for(frame: Frame, changes: list[Change]) -> list[Edit]:
-    return [Edit(frame.numbers[c.component].span, c.new) for c in changes]
+    text = frame.document.text if frame.document is not None else ""
+    edits: list[Edit] = []
+    for c in changes:
+        edits += number_edits(text, frame.numbers[c.component], c.new)
+    return edits
+
+
+_NAME_CHARS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_$")
+
+
+def number_edits(text: str, n: Number, new: str) -> list[Edit]:
+    """The edits that make ``n`` read ``new``, replacing only what is the
+    number's own:
+
+    - a sign that a comment or a line break parts from the digits
+      (``n.signs``, RAPID "- ! note\n670") stays where it is and the digits
+      carry the rest of the value; only where the new value needs the other
+      sign are those signs deleted, and the comment, the line break and
+      everything else between them stay;
+    - a number glued to the name before it (KUKA "{X.00000,...}", legal)
+      must read back as that name and a number: "X0.5" would be the name
+      X0, so the glued form keeps the leading dot (".5") or, for a value
+      of 1 or more, gets the blank the grammar needs ("X 6.0")."""
+    start = n.signs[0].start if n.signs else n.span.start
+    if start > 0 and text[start - 1] in _NAME_CHARS and new[:1].isdigit():
+        new = new[1:] if new.startswith("0.") else " " + new
+    if not n.signs:
+        return [Edit(n.span, new)]
+    negative = n.lead.count("-") % 2 == 1
+    if not negative:
+        return [Edit(n.span, new)]           # "+ ! c\n5" -> "+ ! c\n-7" reads -7
+    if new.startswith("-"):
+        return [Edit(n.span, new[1:])]       # "- ! c\n670" -> "- ! c\n700"
+    if _parse_text(new) == 0.0:
+        return [Edit(n.span, new)]           # -0 is 0
+    return [Edit(s, "") for s in n.signs] + [Edit(n.span, new)]
 
 
 # ----------------------------------------------------------------- refusals

@@ -333,9 +333,10 @@ def _value(node):
     if kind == "neg" or kind == "pos":
         sign_token, operand = node.children
         inner = _value(operand)
-        if isinstance(inner, Number):  # "-0.5" and "- 0.5": one value span, sign included
+        if isinstance(inner, Number):  # the sign joins the span in _with_text, if it may
             sign = -1.0 if kind == "neg" else 1.0
-            return Number(Span(sign_token.start_pos, inner.span.end), None, sign * inner.value)  # type: ignore[arg-type]
+            return Number(inner.span, None, sign * inner.value,  # type: ignore[arg-type]
+                          (Span(sign_token.start_pos, sign_token.end_pos),) + inner.signs)
         return _Expr(*_extent(node))
     if kind == "placeholder":
         return _Placeholder(*_extent(node))
@@ -487,10 +488,25 @@ def _is_literal(v) -> bool:
     return isinstance(v, (Number, bool, str))
 
 
+_BLANKS = re.compile(r"[ \t]*")
+
+
 def _with_text(doc: Document, n: Number) -> Number:
-    if n.text is None:
-        return Number(n.span, doc.slice(n.span), n.value)
-    return n
+    """The number with its text, and its signs joined to its span where only
+    blanks part them from the digits ("-0.5", "- 430.25"): a patch rewrites
+    those whole. A sign behind a comment or a line break stays detached
+    (``Number.signs``), and so do the signs outside it: what stands between a
+    sign and its digits is not the number's to replace."""
+    if n.text is not None:
+        return n
+    text = doc.text
+    start = n.span.start
+    signs = list(n.signs)
+    while signs and _BLANKS.fullmatch(text, signs[-1].end, start):
+        start = signs.pop().start
+    span = Span(start, n.span.end)
+    return Number(span, doc.slice(span), n.value, tuple(signs),
+                  "".join(text[s.start:s.end] for s in signs))
 
 
 RECORD_SIZES = {"tooldata": 3, "wobjdata": 5}
@@ -580,7 +596,7 @@ def _check_array_size(cf: ControllerFile, d: Decl) -> None:
 
 def _start_of(v, default: int) -> int:
     if isinstance(v, Number):
-        return v.span.start
+        return v.signs[0].start if v.signs else v.span.start
     if isinstance(v, list):
         for x in v:
             s = _start_of(x, -1)

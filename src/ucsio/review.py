@@ -163,7 +163,7 @@ def frame_line(f: Frame) -> str:
     if f.pose is None:
         parts.append("no value")
     for key, n in f.numbers.items():
-        parts.append(f"{key}={''.join(n.text.split())}")
+        parts.append(f"{key}={n.written}")
     for k in ("robhold", "ufprog", "ufmec", "storage", "base_type", "tool_type", "role", "load",
               "machine"):
         if k in f.info and f.info[k] is not None and f.info[k] != "":

@@ -1,0 +1,96 @@
+"""Hostile but legal input (issue 12): a patch never damages a file, and bad
+input is one clear line, exit 2, never a traceback.
+
+The files under fixtures/hostile/ are the inputs that broke ucsio once."""
+from __future__ import annotations
+
+import random
+
+import pytest
+
+from conftest import FIXTURES
+from oracles import only_numbers_changed
+from ucsio import rotations as rot
+from ucsio.cli import main
+from ucsio.controller import load, parse
+from ucsio.document import Document
+from ucsio.frames import Pose
+from ucsio.patch import patch_frame
+
+HOSTILE = FIXTURES / "hostile"
+SIGNS = HOSTILE / "detached_signs.mod"
+GLUED = HOSTILE / "glued_components.dat"
+
+
+def close(a: Pose, b: Pose) -> bool:
+    return (all(abs(u - v) <= 0.0005 + 1e-9 for u, v in zip(a.t, b.t))
+            and rot.quat_angle(a.q, b.q) <= 5e-4)
+
+
+def random_pose(rng: random.Random) -> Pose:
+    """Values of both signs, some below 1 (KUKA's leading-dot form), some 0."""
+    def coord():
+        return rng.choice([0.0, rng.uniform(-1, 1), rng.uniform(-2000, 2000)])
+    return Pose.from_abc(coord(), coord(), coord(), rng.uniform(-179, 179),
+                         rng.uniform(-89, 89), rng.uniform(-179, 179))
+
+
+def patched_and_checked(path, name: str, target: Pose) -> Document:
+    cf = load(path)
+    res = patch_frame(cf, name, target, measured=False, check_siblings=False)
+    new = Document(res.new_bytes, path)
+    again = parse(new, full=True)               # what `check` reads: every byte
+    got = again.frame(name)
+    assert close(got.pose, target), (name, got.pose, target)
+    # nothing but the frame's numbers (and a detached sign it had to drop) moved
+    assert only_numbers_changed(cf.document.text, [cf.frame(name)], new.text, [got])
+    assert new.text.count("\n") == cf.document.text.count("\n")
+    return new
+
+
+# ------------------------------------------------------------------ point 0
+
+@pytest.mark.parametrize("name", ["wobjSign", "tSign", "pSign"])
+def test_detached_sign_keeps_comment_and_line_break(name):
+    """`- ! note` newline `670`: the comment and the line break stay; the
+    digits carry the new value, the sign goes only where it must."""
+    rng = random.Random(name)
+    comments = [ln.split("!", 1)[1] for ln in SIGNS.read_text().splitlines() if "!" in ln]
+    for _ in range(25):
+        new = patched_and_checked(SIGNS, name, random_pose(rng))
+        assert [ln.split("!", 1)[1] for ln in new.text.splitlines() if "!" in ln] == comments
+
+
+def test_detached_sign_spans_hold_digits_only():
+    f = load(SIGNS).frame("wobjSign")
+    assert (f.numbers["y"].text, f.numbers["y"].written, f.numbers["y"].value) == \
+        ("670", "-670", -670.0)
+    assert (f.numbers["z"].text, f.numbers["z"].written) == ("35.5", "-35.5")
+    t = load(SIGNS).frame("tSign")
+    assert (t.numbers["y"].text, t.numbers["y"].signs) == ("- 20", ())   # blanks only: one span
+    assert t.numbers["x"].written == "+10"
+
+
+def test_detached_sign_cli_diff_moves_no_line(tmp_path, capsys):
+    f = tmp_path / "m.mod"
+    f.write_bytes(SIGNS.read_bytes())
+    assert main(["patch", str(f), "--frame", "wobjSign", "--set", "1200,700,-35.5,0,0,0",
+                 "--in-place"]) == 0
+    text = f.read_text()
+    assert "[[1200, ! note\n700,-\n\t35.5]" in text
+    assert main(["check", str(f)]) == 0
+
+
+@pytest.mark.parametrize("name", ["fGlued", "fGlued2"])
+def test_kuka_glued_component_reads_back_as_the_same_component(name):
+    rng = random.Random(name)
+    for _ in range(25):
+        patched_and_checked(GLUED, name, random_pose(rng))
+
+
+@pytest.mark.parametrize("x,written", [(0.5, "{X.500,"), (-0.5, "{X-0.500,"), (2.5, "{X 2.500,"),
+                                       (0.0, "{X.00000,"), (-12.0, "{X-12.000,")])
+def test_kuka_glued_component_written_forms(x, written):
+    res = patch_frame(load(GLUED), "fGlued", Pose.from_abc(x, -0.5, 3, 0, 0, 90), measured=False)
+    line = Document(res.new_bytes).text.splitlines()[3]
+    assert line.startswith("DECL FRAME fGlued=" + written), line
