@@ -3,8 +3,9 @@ never half-written.
 
 Every file ucsio writes (patched controller files, solutions, CSV, reports)
 goes to a temporary file in the same folder, is flushed to disk, and replaces
-the target with one rename; a failure at any step leaves the target as it was
-and no temporary file behind.
+the target with one rename; a failure at any step leaves the target (and any
+backup) as it was and no temporary file behind. A symbolic link is written
+through, never replaced; a backup never overwrites an older one.
 """
 from __future__ import annotations
 
@@ -13,16 +14,43 @@ import os
 from .errors import UcsioError
 
 
+def write_target(path: str | os.PathLike) -> str:
+    """Where a write to ``path`` lands. A symbolic link is written through to
+    the file it names, never replaced by a regular file (an engineer who
+    links a controller backup into a work folder means that file); a link
+    that leads nowhere (dangling, or a loop) and a folder are refused."""
+    given = os.fspath(path)
+    path = given
+    if os.path.islink(given):
+        try:
+            path = os.path.realpath(given, strict=True)
+        except FileNotFoundError:
+            raise UcsioError(f"is a symbolic link to {os.readlink(given)!r}, which does not "
+                             "exist: refusing to write through it", file=given) from None
+        except OSError:
+            raise UcsioError("is a loop of symbolic links: refusing to write", file=given) from None
+    if os.path.isdir(path):
+        what = "is a directory" if path == given else f"is a link to the directory {path}"
+        raise UcsioError(f"{what}: cannot write a file there", file=given)
+    return path
+
+
 def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
-                 check=None, owner: tuple[int, int] | None = None) -> None:
+                 check=None, owner: tuple[int, int] | None = None,
+                 backup: bool = False) -> tuple[str, str | None]:
     """Write ``data`` to ``path`` through a temporary file in the same folder,
-    fsync, then ``os.replace``. ``mode`` defaults to a new file's usual mode
-    (0666 less the umask, not mkstemp's 0600). ``check()`` runs just before
-    the rename and may raise to abort. The temporary file never outlives a
-    failure; OS errors become one UcsioError naming the file."""
+    fsync, then ``os.replace``; a link is written through (``write_target``).
+    ``mode`` defaults to a new file's usual mode (0666 less the umask, not
+    mkstemp's 0600). ``check()`` runs just before the rename and may raise to
+    abort. ``backup``: the file being replaced is kept as FILE.bak, or the
+    first free FILE.bak.1, FILE.bak.2, ... (never overwritten), made only
+    after the new bytes are safely on disk and removed again if the rename
+    fails: a failure at any step leaves every file as it was and no
+    temporary file behind. OS errors become one UcsioError naming the file.
+    Returns (the file written, the backup or None)."""
     import tempfile   # only writers pay for it: listing starts without it
 
-    path = os.fspath(path)
+    path = write_target(path)
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise UcsioError("cannot write: the folder does not exist", file=path)
@@ -31,6 +59,7 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
                                    suffix=".ucsio-tmp")
     except OSError as exc:
         raise UcsioError(f"cannot write in this folder: {exc.strerror or exc}", file=path) from None
+    bak = None
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
@@ -48,12 +77,16 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
                 pass           # not allowed to give it away: keep ours
         if check is not None:
             check()
+        if backup and os.path.exists(path):
+            bak = _keep_backup(path)
         os.replace(tmp, path)
     except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+        for leftover in (tmp, bak):
+            if leftover is not None:
+                try:
+                    os.unlink(leftover)
+                except OSError:
+                    pass
         if isinstance(exc, OSError):
             raise UcsioError(f"cannot write: {exc.strerror or exc}", file=path) from None
         raise
@@ -65,6 +98,50 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
             os.close(dfd)
     except OSError:
         pass
+    return path, bak
+
+
+def backup_names(path: str):
+    """FILE.bak, FILE.bak.1, FILE.bak.2, ...: where a backup may go."""
+    yield path + ".bak"
+    n = 1
+    while True:
+        yield f"{path}.bak.{n}"
+        n += 1
+
+
+def _keep_backup(path: str) -> str:
+    """Keep the file at ``path`` under the first free backup name, never
+    replacing one: a hard link to it (instant, no space needed, same bytes,
+    mode and times), or where the file system has none, an exclusive copy.
+    Returns the backup's name."""
+    for bak in backup_names(path):
+        try:
+            os.link(path, bak)
+            return bak
+        except FileExistsError:
+            continue
+        except OSError:
+            pass                # no hard links here (FAT, some shares): copy
+        try:
+            fd = os.open(bak, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        except FileExistsError:
+            continue
+        try:
+            with open(path, "rb") as src, os.fdopen(fd, "wb") as out:
+                out.write(src.read())
+                out.flush()
+                os.fsync(out.fileno())
+            st = os.stat(path)
+            os.chmod(bak, st.st_mode & 0o7777)
+        except BaseException:
+            try:
+                os.unlink(bak)
+            except OSError:
+                pass
+            raise
+        return bak
+    raise AssertionError("unreachable")  # pragma: no cover
 
 
 def atomic_write_text(path: str | os.PathLike, text: str) -> None:

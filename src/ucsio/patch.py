@@ -45,7 +45,7 @@ from . import rotations as rot
 from .controller import ABB_SUFFIXES, ControllerFile, parse
 from .document import Document, Edit, text_lines
 from .errors import UcsioError
-from .files import atomic_write
+from .files import atomic_write, write_target
 from .frames import Frame, Number, Pose
 
 # Written precision (decimals) and half a step: what "unchanged" means.
@@ -558,12 +558,13 @@ def _same_on_disk(path: str, doc: Document) -> bool:
 def save(result: PatchResult, path: str | os.PathLike | None = None,
          backup: bool = False) -> str:
     """Write a planned patch: to ``path`` (``-o OUT``), or over the source file
-    (``--in-place``; ``backup`` keeps FILE.bak). Refused, with nothing written,
-    when the source changed on disk since it was read."""
+    (``--in-place``; ``backup`` keeps the replaced file as FILE.bak, else
+    FILE.bak.1, FILE.bak.2, ...). A link is written through to its file
+    (``files.write_target``). Refused, with nothing written, when the source
+    changed on disk since it was read; on any failure no file changes, the
+    backup included."""
     src = result.document.path
-    target = os.fspath(path) if path is not None else src
-    if os.path.islink(target):        # write through a link, never replace it
-        target = os.path.realpath(target)
+    target = write_target(path if path is not None else src)
 
     def unchanged() -> None:
         if not _same_on_disk(src, result.document):
@@ -576,11 +577,7 @@ def save(result: PatchResult, path: str | os.PathLike | None = None,
         mode, owner = st.st_mode & 0o7777, (st.st_uid, st.st_gid)
     except OSError:
         mode = owner = None
-    if backup:
-        bak = target + ".bak"
-        atomic_write(bak, Path(target).read_bytes() if os.path.exists(target) else result.old_bytes,
-                     mode, check=unchanged, owner=owner)
-        result.backup = bak
-    atomic_write(target, result.new_bytes, mode, check=unchanged, owner=owner)
-    result.written = target
-    return target
+    written, bak = atomic_write(target, result.new_bytes, mode, check=unchanged, owner=owner,
+                                backup=backup)
+    result.written, result.backup = written, bak
+    return written
