@@ -222,3 +222,159 @@ def test_rotation_angle_near_0_and_180():
         d = Rotation.from_rotvec(np.radians(ang) * np.array([0.0, 0.8, 0.6]))
         got = angle_deg(base.as_matrix(), (base * d).as_matrix())
         assert got == pytest.approx(ang, abs=1e-9)
+
+
+# ------------------------------------------------------------------ the closed form
+
+def eigh_reference(laser, robot, w):
+    """Horn's q from numpy's eigh on the same N: the method the closed form
+    (quartic, Newton, adjugate) replaces."""
+    s = horn.sums(laser, robot, w)
+    S = s.M
+    N = np.empty((len(S), 4, 4))
+    N[:, 0] = np.stack([S[:, 0, 0] + S[:, 1, 1] + S[:, 2, 2], S[:, 1, 2] - S[:, 2, 1],
+                        S[:, 2, 0] - S[:, 0, 2], S[:, 0, 1] - S[:, 1, 0]], -1)
+    N[:, 1] = np.stack([S[:, 1, 2] - S[:, 2, 1], S[:, 0, 0] - S[:, 1, 1] - S[:, 2, 2],
+                        S[:, 0, 1] + S[:, 1, 0], S[:, 2, 0] + S[:, 0, 2]], -1)
+    N[:, 2] = np.stack([S[:, 2, 0] - S[:, 0, 2], S[:, 0, 1] + S[:, 1, 0],
+                        -S[:, 0, 0] + S[:, 1, 1] - S[:, 2, 2], S[:, 1, 2] + S[:, 2, 1]], -1)
+    N[:, 3] = np.stack([S[:, 0, 1] - S[:, 1, 0], S[:, 2, 0] + S[:, 0, 2],
+                        S[:, 1, 2] + S[:, 2, 1], -S[:, 0, 0] - S[:, 1, 1] + S[:, 2, 2]], -1)
+    values, vectors = np.linalg.eigh(N)
+    return values, horn.quat_to_matrix(vectors[:, :, 3])
+
+
+@pytest.mark.parametrize("kind", ["random", "near180", "gimbal"])
+def test_closed_form_eigenvector_equals_eigh(kind):
+    """The largest eigenpair from the characteristic quartic and the adjugate
+    gives the rotation eigh gives, within 1e-9 deg, on the property tests'
+    kinds of rotation, with noise, weights, coplanar and 3-point sets."""
+    rng = np.random.default_rng({"random": 20, "near180": 21, "gimbal": 22}[kind])
+    for n in (3, 4, 8, 11):
+        B = 300
+        laser = rng.uniform(0.0, 1.0, size=(B, n, 3)) * [1200.0, 800.0, 300.0]
+        laser[::3, :, 2] = 0.0                                        # coplanar
+        truths = [make_truth(rng, kind) for _ in range(B)]
+        R = np.stack([r.as_matrix() for r, _ in truths])
+        t = np.stack([t for _, t in truths])
+        robot = np.einsum("bij,bmj->bmi", R, laser) + t[:, None]
+        robot += rng.normal(0, 1.0, size=(B, 1, 1)) ** 2 * rng.normal(size=robot.shape)
+        w = rng.uniform(0.1, 3.0, size=(B, n))
+        res = horn.horn_batch(laser, robot, w)
+        values, R_ref = eigh_reference(laser, robot, w)
+        ok = res.ok                                        # a few random triangles are slivers
+        assert ok.sum() >= 0.95 * B and (res.status[~ok] == horn.COLLINEAR).all()
+        assert horn.rotation_angle_deg(res.R[ok], R_ref[ok]).max() <= 1e-9
+        np.testing.assert_allclose(res.lambda_m, values[:, 3], rtol=1e-11)
+
+
+def test_near_tie_falls_back_to_eigh(monkeypatch):
+    """Robot points nearly on a line (laser points well spread): two
+    rotations almost equally good, N's two largest eigenvalues a relative
+    1e-8 apart - above the ambiguity limit, below the adjugate's. eigh
+    decides there; every other set keeps the closed form."""
+    rng = np.random.default_rng(23)
+    laser = fixture_points(rng, 6)
+    robot = np.outer(np.linspace(0, 1000, 6), [0.6, 0.8, 0.0]) + 300.0
+    robot[:, 2] += rng.choice([-1.0, 1.0], size=6) * 1e-5
+    good = fixture_points(rng, 6)
+    L = np.stack([laser, good])
+    R = np.stack([robot, good + 10.0])
+    values, R_ref = eigh_reference(L, R, None)
+    gap = (values[0, 3] - values[0, 2]) / (abs(values[0, 3]) + abs(values[0, 0]))
+    assert horn.MIN_EIGEN_GAP < gap < horn.TIE_GAP
+    decided = []
+    real = np.linalg.eigh
+    monkeypatch.setattr(np.linalg, "eigh", lambda N: decided.append(len(N)) or real(N))
+    res = horn.horn_batch(L, R)
+    assert decided == [1]                                  # the tied set only
+    assert res.status.tolist() == [horn.OK, horn.OK]
+    assert horn.rotation_angle_deg(res.R, R_ref).max() <= 1e-9
+
+
+def test_chunks_give_the_same_fits(monkeypatch):
+    rng = np.random.default_rng(24)
+    laser = rng.uniform(-500, 500, size=(50, 7, 3))
+    robot = laser[:, :, ::-1] + rng.normal(0, 0.1, size=laser.shape)
+    w = rng.uniform(0.5, 2.0, size=(50, 7))
+    whole = horn.horn_batch(laser, robot, w)
+    loo_whole, st_whole = horn.leave_one_out(laser, robot, w)
+    monkeypatch.setattr(horn, "CHUNK_POINTS", 20)          # 2 sets, 2 leave-one-out fits at a time
+    parts = horn.horn_batch(laser, robot, w)
+    loo_parts, st_parts = horn.leave_one_out(laser, robot, w)
+    np.testing.assert_allclose(parts.R, whole.R, atol=1e-14)   # summation order: last bits
+    np.testing.assert_allclose(parts.t, whole.t, atol=1e-10)
+    np.testing.assert_allclose(loo_parts, loo_whole, atol=1e-10)
+    np.testing.assert_array_equal(st_parts, st_whole)
+
+
+# ------------------------------------------------------------------ leave-one-out from the sums
+
+def test_leave_one_out_from_sums_equals_explicit_refits():
+    """Each point's terms taken out of its set's sums give the fit of the
+    other points: equal to refitting them, to 1e-9 mm, with weights, zero
+    weights and degenerate subsets."""
+    rng = np.random.default_rng(25)
+    B, n = 40, 7
+    truths = Rotation.random(B, random_state=26)
+    laser = rng.uniform(-600, 600, size=(B, n, 3))
+    robot = np.einsum("bij,bmj->bmi", truths.as_matrix(), laser) + rng.uniform(-3000, 3000, (B, 1, 3))
+    robot += rng.normal(0, 0.5, size=robot.shape)
+    w = rng.uniform(0.2, 3.0, size=(B, n))
+    w[0, 2] = 0.0                                          # a point already left out
+    laser[1, :4] = np.outer(np.linspace(0, 900, 4), [1.0, 2.0, 2.0])   # 4 of 7 on a line
+    laser[1, 4:] = laser[1, 0] + [[300, -200, 50], [0, 0, 0], [0, 0, 0]] * np.array([[1], [1e-9], [2e-9]])
+    loo, status = horn.leave_one_out(laser, robot, w)
+    for b in range(B):
+        for j in range(n):
+            keep = w[b] > 0
+            keep[j] = False
+            ref = horn.horn_batch(laser[b][keep][None], robot[b][keep][None], w[b][keep][None])
+            assert status[b, j] == ref.status[0], (b, j)
+            if ref.ok[0]:
+                d = np.linalg.norm(robot[b, j] - ref.apply(laser[b, j][None, None])[0, 0])
+                assert loo[b, j] == pytest.approx(d, abs=1e-9), (b, j)
+    assert (status[1] != horn.OK).sum() >= 1              # leaving out the off-line point
+    assert (status[np.arange(B) > 1] == horn.OK).all()
+
+
+def large_set(rng, n):
+    truth = Rotation.random(random_state=27)
+    t = rng.uniform(-3000, 3000, size=3)
+    laser = rng.uniform(0, 1, size=(n, 3)) * [1200.0, 800.0, 300.0]
+    robot = truth.apply(laser) + t + rng.normal(0, 0.05, size=(n, 3))
+    return laser, robot, truth, t
+
+
+def test_large_set_solves_with_leave_one_out_in_linear_memory():
+    """20,000 points (the benchmark runs 100,000): the fit, and every
+    point's leave-one-out residual, without n x n anything (the old way
+    needed 20,000^2 x 3 numbers: 9.6 GB)."""
+    from ucsio.solve import solve_points
+    rng = np.random.default_rng(28)
+    n = 20_000
+    laser, robot, truth, t = large_set(rng, n)
+    robot[123] += [3.0, 0.0, 0.0]                          # one outlier
+    sol = solve_points([f"P{i}" for i in range(n)], laser, robot)
+    assert [p.name for p in sol.points if not p.used] == ["P123"]
+    assert sol.points[123].excluded_by == "auto" and sol.accepted
+    assert angle_deg(sol.pose.matrix, truth.as_matrix()) < 1e-3
+    np.testing.assert_allclose(sol.pose.t, t, atol=0.01)
+    used = np.array([p.used for p in sol.points])
+    for j in (0, 4567, n - 1):                             # leave-one-out, the slow way
+        keep = used & (np.arange(n) != j)
+        f = horn.absolute_orientation(laser[keep], robot[keep])
+        assert sol.points[j].loo_residual == pytest.approx(
+            np.linalg.norm(robot[j] - f.apply(laser[j])), abs=1e-9)
+
+
+def test_ten_thousand_collinear_points_refused():
+    from ucsio.solve import solve_points
+    rng = np.random.default_rng(29)
+    n = 10_000
+    d = np.array([0.48, 0.6, 0.64])
+    laser = np.outer(rng.uniform(0, 2000, n), d) + 100.0 + rng.normal(0, 0.01, size=(n, 3))
+    truth = Rotation.random(random_state=30)
+    with pytest.raises(UcsioError, match="lie .nearly. on one line") as info:
+        solve_points([f"P{i}" for i in range(n)], laser, truth.apply(laser) + 5.0)
+    assert info.value.exit_code == 2

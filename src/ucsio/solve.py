@@ -188,9 +188,9 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
     return result
 
 
-#: padded (sets x points x points) elements above which one round is split
-#: into Horn calls by point count (a 200-point dataset would otherwise pad
-#: every 8-point one to 200 x 200).
+#: padded (sets x points) elements above which one round is split into
+#: batched calls by point count (one 100,000-point dataset would otherwise
+#: pad every 8-point one to 100,000 points).
 PAD_BUDGET = 6_000_000
 
 
@@ -210,22 +210,17 @@ class Dataset:
     path: str | None = None      # for error messages
 
 
-def _fit_sets(laser, robot, weights):
-    """Horn fits of (S, n, 3) sets: R (S,3,3), t (S,3), ok (S,)."""
-    fit = horn.horn_batch(laser, robot, weights)
-    return fit.R, fit.t, fit.ok, fit.status
-
-
 def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
     """For every active dataset: the fit of its used points and the
-    leave-one-out fit of each point, in as few Horn calls as the padding
-    budget allows (one, normally). Returns per dataset (R, t, status,
-    residual (n,), loo (n,) with nan where undetermined or not used)."""
+    leave-one-out fit of each point, in as few batched calls as the padding
+    budget allows (one, normally). The leave-one-out fits come from each
+    set's sums less the point's own terms (``horn.leave_one_out``), so a
+    round costs O(points) memory and time. Returns per dataset (R, t,
+    status, residual (n,), loo (n,) with nan where undetermined or not used)."""
     out: dict[int, tuple] = {}
     sizes = {i: len(data[i].names) for i in active}
-    chunks: list[list[int]] = []
     n_max = max(sizes.values())
-    if len(active) * (n_max + 1) * n_max * 3 <= PAD_BUDGET:
+    if len(active) * n_max * 3 <= PAD_BUDGET:
         chunks = [active]
     else:   # bucket by point count (powers of two), so padding stays bounded
         buckets: dict[int, list[int]] = {}
@@ -244,25 +239,14 @@ def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
             L[a, :m] = d.laser
             Rb[a, :m] = d.robot
             W[a, :m] = d.weights * used[i]
-        # stack: A full fits, then A * n leave-one-out fits (point j's weight zeroed)
-        W_loo = (W[:, None, :] * (1.0 - np.eye(n))[None]).reshape(A * n, n)
-        L_all = np.concatenate([L, np.repeat(L, n, axis=0)])
-        R_all = np.concatenate([Rb, np.repeat(Rb, n, axis=0)])
-        W_all = np.concatenate([W, W_loo])
-        R, t, ok, status = _fit_sets(L_all, R_all, W_all)
-        Rf, tf, stf = R[:A], t[:A], status[:A]
-        pred = np.einsum("aij,anj->ani", Rf, L) + tf[:, None, :]
-        resid = np.linalg.norm(Rb - pred, axis=2)                       # (A, n)
-        Rl = R[A:].reshape(A, n, 3, 3)
-        tl = t[A:].reshape(A, n, 3)
-        okl = ok[A:].reshape(A, n)
-        pred_l = np.einsum("anij,anj->ani", Rl, L) + tl
-        loo = np.linalg.norm(Rb - pred_l, axis=2)
+        fit = horn.horn_batch(L, Rb, W)
+        resid = np.linalg.norm(Rb - fit.apply(L), axis=2)              # (A, n)
+        loo, loo_status = horn.leave_one_out(L, Rb, W)
         n_used = (W > 0).sum(axis=1)
-        loo = np.where(okl & (W > 0) & (n_used[:, None] >= 4), loo, np.nan)
+        loo = np.where((loo_status == horn.OK) & (W > 0) & (n_used[:, None] >= 4), loo, np.nan)
         for a, i in enumerate(chunk):
             m = sizes[i]
-            out[i] = (Rf[a], tf[a], int(stf[a]), resid[a, :m], loo[a, :m])
+            out[i] = (fit.R[a], fit.t[a], int(fit.status[a]), resid[a, :m], loo[a, :m])
     return out
 
 
