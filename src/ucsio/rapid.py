@@ -83,8 +83,10 @@ class Region(Value):
         self.kind, self.span = kind, span
 
 
-def outline(doc: Document) -> list[Region]:
-    """Module brackets, header and frame declarations, in order.
+def outline(doc: Document, routines: bool = False) -> list[Region]:
+    """Module brackets, header and frame declarations, in order; with
+    ``routines`` also every routine and every run of other declarations
+    (what ``diff --points`` reads: move instructions and robtargets).
 
     Walks every top-level item (contiguity is checked, so nothing is skipped
     unseen) and raises a positioned error for anything that is not RAPID at
@@ -109,7 +111,7 @@ def outline(doc: Document) -> list[Region]:
                 raise doc.error("declaration outside MODULE ... ENDMODULE", start)
             if not _balanced(m.group(kind)):
                 raise doc.error("unbalanced [ ] in declaration", _unbalanced_decl(text, start, pos))
-            if kind == "frame_decl":
+            if kind == "frame_decl" or routines:
                 append(Region(kind, Span(start, pos)))
             continue
         if kind == "eof":
@@ -135,6 +137,8 @@ def outline(doc: Document) -> list[Region]:
             append(Region("header", Span(start, pos)))
         elif not in_module:
             raise doc.error(f"{kind} outside MODULE ... ENDMODULE", start)
+        elif routines and kind == "routine":
+            append(Region("routine", Span(start, pos)))
     if pos != len(text):
         item = _TRIVIA.match(text, pos).end()  # point at the item, not the blank before it
         raise doc.error(_explain(text, item), item)

@@ -3,7 +3,8 @@
   ucsio diff FILE --frame NAME --measured SOLUTION.json [--tolerance T]
       the simulated frame in FILE against the measured one: dx dy dz da db dc
       angle dist dt_mean, group, pass. Exit 1 when dt_mean is not below the
-      tolerance (default 100 mm).
+      tolerance (default 100 mm). --points: how far each position taught in
+      the frame moves in world (the worst ten, and the count).
   ucsio diff OLD NEW
       every frame of two controller files matched by name: changed, added,
       removed. Differences below float32 precision count as unchanged. Exit 0
@@ -36,6 +37,10 @@ def add_arguments(p) -> None:
     p.add_argument("--tolerance", type=float, default=None, metavar="MM",
                    help="dt_mean below this passes (default 100 mm)")
     p.add_argument("--oframe", action="store_true", help="ABB: the object frame of the wobj")
+    p.add_argument("--points", action="store_true",
+                   help="also: how far each position taught in the frame moves in world "
+                        "(KUKA E6POS/POS with its BASE_NO in the controller's tree, ABB "
+                        "robtargets moved to with \\WObj:=NAME in the folder's modules)")
     p.add_argument("--textconv", action="store_true",
                    help="print FILE's frames one per line (git diff.<driver>.textconv)")
 
@@ -56,8 +61,8 @@ def run(args) -> int:
         if not (args.frame and args.measured) or len(files) != 1:
             raise UcsioError("usage: ucsio diff FILE --frame NAME --measured SOLUTION.json")
         return _one_frame(args)
-    if args.tolerance is not None or args.oframe:
-        raise UcsioError("--tolerance and --oframe go with --frame and --measured")
+    if args.tolerance is not None or args.oframe or args.points:
+        raise UcsioError("--tolerance, --oframe and --points go with --frame and --measured")
     if len(files) == 7:
         return _git(args)
     if len(files) != 2:
@@ -97,6 +102,12 @@ def _one_frame(args) -> int:
     measured = read_solution(args.measured)
     cf = load(args.files[0])
     d = diff_frame(cf, args.frame, measured, tol, oframe=args.oframe)
+    if args.points:
+        from ..patch import resolve_name
+        from ..taught import points_moved
+        d.update(points_moved(cf, cf.frame(resolve_name(args.frame, args.oframe)), measured))
+        for w in d["points_warnings"]:
+            print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.json:
         emit_json(d)
         return 0 if d["pass"] else 1
@@ -113,4 +124,22 @@ def _one_frame(args) -> int:
     verdict = "PASS" if d["pass"] else "FAIL"
     print(f"angle {d['angle']:.4f} deg  dist {d['dist']:.3f} mm  dt_mean {d['dt_mean']:.3f} mm  "
           f"group {d['group']}  {verdict} (tolerance {tol:g} mm)")
+    if args.points:
+        print(_points_text(d))
     return 0 if d["pass"] else 1
+
+
+def _points_text(d: dict) -> str:
+    """The taught points: how many, how far they move, the worst ten."""
+    from ..taught import WORST
+
+    pm = d["points_moved"]
+    if not pm["count"]:
+        return f"taught points in {d['name']}: none found"
+    head = (f"taught points in {d['name']}: {pm['count']}, moved in world by max "
+            f"{pm['max']:.3f} mm (worst {pm['worst']}), mean {pm['mean']:.3f} mm")
+    rows = d["points"][:WORST]
+    shown = "" if len(d["points"]) <= WORST else f" (the {WORST} that move most)"
+    return head + shown + "\n" + table(
+        ["point", "file:line", "moved mm"],
+        [[r["name"], f"{r['file']}:{r['line']}", f"{r['moved']:.3f}"] for r in rows], right={2})

@@ -1,0 +1,117 @@
+"""Taught points: how far the programmed path moves when a frame changes
+(``ucsio diff FILE --frame NAME --measured SOLUTION.json --points``).
+
+The positions a robot was taught in a frame are stored relative to it, so
+they move with it: a 0.5 deg correction moves a point 2 m away by 17 mm while
+the frame's own dt_mean may say 3 mm. The readers find them:
+
+- ``kuka``: E6POS/POS data whose FDAT has the frame's BASE_NO, in the .dat
+  files of the controller's tree (the KRC tree around $config.dat);
+- ``abb``: robtargets used by instructions with ``\\WObj:=NAME``, in the
+  modules of the file's folder.
+
+``points_moved`` puts each one through the simulated and the measured frame
+(frames.Pose, the one place for frame algebra) and reports
+moved = |T_measured p - T_simulated p| in world, mm.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+from ..controller import ControllerFile
+from ..errors import UcsioError
+from ..frames import Frame, Pose
+from ..values import Value
+
+WORST = 10          # the table shows the points that move most
+
+
+class TaughtPoint(Value):
+    """A position taught in a frame: ``xyz`` in the frame's coordinates (ABB:
+    the work object's object frame; KUKA: the base), where it is written;
+    ``q`` its orientation where known (ABB RelTool offsets along it)."""
+
+    __slots__ = ("name", "file", "line", "xyz", "q")
+
+    def __init__(self, name: str, file: str, line: int, xyz: tuple[float, float, float],
+                 q: tuple[float, float, float, float] | None = None):
+        self.name, self.file, self.line, self.xyz, self.q = name, file, line, xyz, q
+
+
+class Found(Value):
+    """What a reader found: the points, and what it could not count."""
+
+    __slots__ = ("points", "warnings")
+
+    def __init__(self, points: list[TaughtPoint] | None = None,
+                 warnings: list[str] | None = None):
+        self.points = points if points is not None else []
+        self.warnings = warnings if warnings is not None else []
+
+
+def find_points(cf: ControllerFile, frame: Frame,
+                load: Callable[[str], ControllerFile] | None = None) -> Found:
+    """The points taught in ``frame`` (of ``cf``), read from the files around it."""
+    if frame.vendor == "abb":
+        from . import abb
+        return abb.find(cf, frame, load)
+    from . import kuka
+    return kuka.find(cf, frame, load)
+
+
+def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose], list[Pose]]:
+    """The poses a taught point goes through to world, simulated and
+    measured, innermost last. ABB: uframe * oframe (robtargets are in the
+    object frame); a measured user frame replaces the uframe, a measured
+    object frame (given in its user frame, patch.measured_in_parent) the
+    oframe. KUKA: the base alone."""
+    from ..patch import measured_in_parent
+
+    mine = measured_in_parent(cf, frame, measured)
+    if frame.vendor != "abb":
+        return [frame.pose], [mine]
+    wobj = frame.name[: -len(".oframe")] if frame.info.get("component") == "oframe" else frame.name
+    uframe, oframe = cf.frame(wobj), cf.frame(wobj + ".oframe")
+    for part in (uframe, oframe):
+        if part.pose is None:
+            raise UcsioError(f"{part.name}: the file gives no literal value; the taught points "
+                             "cannot be placed in world", file=part.file, line=part.line)
+    if frame is oframe:
+        return [uframe.pose, oframe.pose], [uframe.pose, mine]
+    return [uframe.pose, oframe.pose], [mine, oframe.pose]
+
+
+def _through(chain: list[Pose], p) -> tuple[float, float, float]:
+    for pose in reversed(chain):
+        p = pose.apply(p)
+    return p
+
+
+def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
+                 found: Found | None = None) -> dict[str, Any]:
+    """SPEC's ``points`` (each ``name``, ``file``, ``line``, ``moved`` in mm,
+    worst first) and ``points_moved`` (``count``, ``max``, ``mean``,
+    ``worst``: the name of the point that moves most), with the readers'
+    ``points_warnings``."""
+    if found is None:
+        found = find_points(cf, frame)
+    sim, meas = _chain(cf, frame, measured)
+    rows = []
+    for p in found.points:
+        a, b = _through(sim, p.xyz), _through(meas, p.xyz)
+        moved = math.dist(a, b)
+        rows.append({"name": p.name, "file": p.file, "line": p.line, "moved": moved})
+    rows.sort(key=lambda r: (-r["moved"], r["file"], r["line"], r["name"]))
+    summary = summarize(rows)
+    return {"points": rows, "points_moved": summary, "points_warnings": list(found.warnings)}
+
+
+def summarize(rows: list[dict]) -> dict[str, Any]:
+    """count, max, mean and worst of rows sorted worst first."""
+    if not rows:
+        return {"count": 0, "max": None, "mean": None, "worst": None}
+    worst = rows[0]
+    return {"count": len(rows), "max": worst["moved"],
+            "mean": sum(r["moved"] for r in rows) / len(rows), "worst": worst["name"],
+            "worst_file": worst["file"], "worst_line": worst["line"]}

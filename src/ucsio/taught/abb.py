@@ -1,0 +1,408 @@
+"""ABB: the robtargets that instructions move to in a work object.
+
+For every module of the file's folder (.mod .modx .sys .sysx .prg), the
+outline scanner (ucsio.rapid.outline with ``routines``) gives the routines
+and the runs of declarations. A regex cuts those into statements at the
+semicolons (strings and comments skipped, as the grammar's lexer does).
+
+- A statement that names a work object (``\\WObj:=``) is parsed with the
+  grammar's ``statements`` start symbol, all of a module's in one Lark call:
+  only the instruction and its arguments matter.
+- robtarget declarations (module level, and VAR/CONST inside routines) are
+  parsed as data declarations, as the fast path parses frames.
+
+An instruction's positional arguments that are robtargets are its points:
+a robtarget by name (routine-local first, then the module, then a global
+one of another module), an array element (``p{3}``), a literal target, and
+``Offs(p, dx, dy, dz)`` / ``RelTool(p, dx, dy, dz)`` with literal offsets
+(the offset point itself). Each point is counted once, at the line its
+value is written. A target the folder does not declare (a routine
+parameter, another task's data) is a warning, never a silent zero.
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from .. import rapid
+from ..controller import ABB_SUFFIXES, ControllerFile
+from ..document import Document, Span
+from ..errors import UcsioError
+from ..frames import Frame, Number
+from ..rotations import quat_to_matrix, matvec
+from . import Found, TaughtPoint
+
+# One statement: everything up to the next ';' outside strings and comments.
+_STATEMENT = re.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
+_STRINGS_COMMENTS = re.compile(r'"[^"\r\n]*+"|![^\r\n]*+')
+_WOBJ = re.compile(r"\\\s*WObj\s*:=", re.I)
+_WOBJ_NAMED = re.compile(r"\\\s*WObj\s*:=\s*([A-Za-z_]\w*(?:\s*\{[^}]*\})?)", re.I)
+_GAP = r"(?:\s|![^\r\n]*+)*+"
+_ROBTARGET_DECL = re.compile(_GAP + r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)"
+                             + _GAP + r"robtarget\b" + _GAP + r"(\w+)", re.I)
+# a routine's head: [LOCAL] PROC name(params) | TRAP name | FUNC type name(params)
+_LEAD = re.compile(_GAP)
+_ROUTINE_HEAD = re.compile(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
+                           + _GAP + r"\w+" + _GAP + r"(?:\([^)]*\))?", re.I)
+_OFFSET_FUNCS = {"offs", "reltool"}
+# instructions whose first argument is the cartesian target (not MoveAbsJ,
+# MoveExtJ: joint targets; not SearchL: a signal comes first)
+_CARTESIAN_MOVE = re.compile(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
+
+
+def _modules(frame: Frame) -> list[Path]:
+    here = Path(frame.file)
+    try:
+        found = sorted(p for p in here.parent.iterdir()
+                       if p.suffix.lower() in ABB_SUFFIXES and p.is_file())
+    except OSError:
+        found = []
+    return found or [here]
+
+
+def _wobj_name(frame: Frame) -> str:
+    name = frame.name
+    if frame.info.get("component") == "oframe":
+        name = name[: -len(".oframe")]
+    return name
+
+
+class _Module:
+    """One module's robtarget declarations and \\WObj statements."""
+
+    def __init__(self, doc: Document):
+        self.doc = doc
+        self.decls: list[rapid.Decl] = []
+        self.routines: list[Span] = []
+        self.statements = []            # (tree or None where unreadable, span)
+        self.brackets: list[rapid.Region] = []              # MODULE ..., ENDMODULE
+        self.targets: list[tuple[str, rapid.Region]] = []   # robtarget declarations, by name
+
+    def parse_targets(self, names: set[str]) -> None:
+        """Parse the robtarget declarations called one of ``names`` (casefolded),
+        all in one Lark call, as the fast path parses frame declarations: a
+        path module's thousand targets cost nothing unless a move uses them."""
+        keep = [r for name, r in self.targets if name in names]
+        if not keep:
+            return
+        regions = sorted(self.brackets + keep, key=lambda r: r.span.start)
+        compact = rapid.Compact(self.doc, regions)
+        tree = rapid.parse_tree(self.doc, compact.text, compact)
+        compact.remap(tree)
+        self.decls = [d for d in rapid.declarations(self.doc, tree)
+                      if d.type.casefold() == "robtarget"]
+
+
+def _read_module(doc: Document) -> _Module:
+    mod = _Module(doc)
+    text = doc.text
+    regions = rapid.outline(doc, routines=True)
+    moves = []              # spans of statements that name a work object
+    for r in regions:
+        if r.kind in ("module", "endmodule"):
+            mod.brackets.append(r)
+            continue
+        if r.kind not in ("decls", "routine"):
+            continue
+        pos, end = r.span.start, r.span.end
+        if r.kind == "routine":
+            mod.routines.append(r.span)
+            head = _ROUTINE_HEAD.match(text, pos, end)
+            if head:
+                pos = head.end()
+        for m in _STATEMENT.finditer(text, pos, end):
+            decl = _ROBTARGET_DECL.match(text, m.start(), m.end())
+            if decl:
+                mod.targets.append((decl.group(1).casefold(),
+                                    rapid.Region("decl", Span(m.start(), m.end()))))
+            elif r.kind == "routine":
+                bare = _STRINGS_COMMENTS.sub(lambda x: " " * len(x.group()), m.group())
+                if _WOBJ.search(bare):
+                    start = _LEAD.match(text, m.start(), m.end()).end()   # at its first word
+                    moves.append(rapid.Region("statement", Span(start, m.end())))
+    if moves:
+        mod.statements = _parse_statements(doc, moves)
+    return mod
+
+
+def _statement_parser():
+    from ..grammar import parser
+    return parser("rapid", ("statements",), positions=False)
+
+
+def _parse_statements(doc: Document, regions) -> list:
+    """Every statement's tree, with positions in the file: one Lark call for
+    all of them; where that fails, one call each, so the error names the
+    statement."""
+    from lark.exceptions import LarkError
+
+    compact = rapid.Compact(doc, regions)
+    try:
+        tree = _statement_parser().parse(compact.text, start="statements")
+    except LarkError:
+        tree = None
+    if tree is not None:
+        compact.remap(tree)
+        return [(st, r.span) for st, r in zip(tree.children, regions)]
+    out = []
+    for r in regions:
+        one = rapid.Compact(doc, [r])
+        try:
+            t = _statement_parser().parse(one.text, start="statements")
+        except LarkError:
+            out.append((None, r.span))
+            continue
+        one.remap(t)
+        out.append((t.children[0], r.span))
+    return out
+
+
+def _text(node) -> str:
+    """A name, element or component as written, without spaces: 'p10',
+    'wobjs{2}', 'targets{i,2}', 'rec.p' (the tree drops the brackets)."""
+    from lark import Token
+
+    if isinstance(node, Token):
+        return str(node)
+    if node.data == "element":
+        return _text(node.children[0]) + "{" + ",".join(_text(c) for c in node.children[1:]) + "}"
+    if node.data == "component":
+        return _text(node.children[0]) + "." + _text(node.children[1])
+    return "".join(str(t) for t in node.scan_values(lambda v: isinstance(v, Token)))
+
+
+class _Index:
+    """Robtarget declarations by name: routine-local, module, global."""
+
+    def __init__(self, modules: list[_Module]):
+        self.local: dict[tuple[int, str], rapid.Decl] = {}   # (routine start, name)
+        self.module: dict[tuple[int, str], rapid.Decl] = {}  # (module id, name)
+        self.glob: dict[str, tuple[_Module, rapid.Decl]] = {}
+        for mod in modules:
+            for d in mod.decls:
+                key = d.name.casefold()
+                routine = next((s for s in mod.routines if s.start <= d.start < s.end), None)
+                if routine is not None:
+                    self.local.setdefault((id(mod), routine.start, key), d)
+                    continue
+                self.module.setdefault((id(mod), key), d)
+                if d.scope != "LOCAL":
+                    self.glob.setdefault(key, (mod, d))
+
+    def lookup(self, mod: _Module, at: int, name: str):
+        key = name.casefold()
+        routine = next((s for s in mod.routines if s.start <= at < s.end), None)
+        if routine is not None and (id(mod), routine.start, key) in self.local:
+            return mod, self.local[(id(mod), routine.start, key)]
+        if (id(mod), key) in self.module:
+            return mod, self.module[(id(mod), key)]
+        return self.glob.get(key, (None, None))
+
+
+def _target(value) -> tuple[tuple[float, float, float], tuple] | None:
+    """(trans, rot) of a robtarget value [[x,y,z],[q1..q4],conf,extax]."""
+    if not (isinstance(value, list) and len(value) == 4):
+        return None
+    t, q = value[0], value[1]
+    if not (isinstance(t, list) and len(t) == 3 and all(isinstance(c, Number) for c in t)):
+        return None
+    quat = None
+    if isinstance(q, list) and len(q) == 4 and all(isinstance(c, Number) for c in q):
+        quat = tuple(c.value for c in q)
+    return tuple(c.value for c in t), quat
+
+
+def find(cf: ControllerFile, frame: Frame, load=None) -> Found:
+    found = Found()
+    if frame.type != "wobjdata":
+        found.warnings.append(f"{frame.name} is a {frame.type}, not a work object: no taught "
+                              "points are stored in it")
+        return found
+    wobj = _wobj_name(frame).casefold()
+    modules = []
+    for path in _modules(frame):
+        try:
+            doc = cf.document if Path(path).resolve() == Path(frame.file).resolve() \
+                else Document.read(path)
+            modules.append(_read_module(doc))
+        except UcsioError as exc:
+            found.warnings.append(f"could not read {path} ({exc}); its points are not counted")
+    wanted = {str(tok).casefold() for mod in modules for tree, _ in mod.statements
+              if tree is not None for tok in _names_moved_to(tree, wobj)}
+    for mod in list(modules):
+        try:
+            mod.parse_targets(wanted)
+        except UcsioError as exc:
+            found.warnings.append(f"could not read {mod.doc.path} ({exc}); its points are "
+                                  "not counted")
+            modules.remove(mod)
+    index = _Index(modules)
+    seen: set = set()
+    for mod in modules:
+        doc = mod.doc
+        for tree, span in mod.statements:
+            if tree is None:
+                _unreadable(doc, span, wobj, found)
+                continue
+            _points_of(tree, mod, index, wobj, found, seen)
+    return found
+
+
+_ASSIGNMENT = re.compile(r"\s*[A-Za-z_][\w.{}, ]*:=")
+
+
+def _unreadable(doc: Document, span: Span, wobj: str, found: Found) -> None:
+    r"""A statement the grammar does not read: a warning where it may move to
+    the work object (an assignment such as p := CRobT(\WObj:=w) reads a
+    position, it does not move)."""
+    bare = _STRINGS_COMMENTS.sub(lambda x: " " * len(x.group()), doc.text[span.start:span.end])
+    head = _ROUTINE_HEAD.match(bare)
+    names = {re.sub(r"\s", "", m.group(1)).casefold() for m in _WOBJ_NAMED.finditer(bare)}
+    if wobj not in names or _ASSIGNMENT.match(bare, head.end() if head else 0):
+        return
+    start = span.start + len(bare) - len(bare.lstrip())
+    line, col = doc.line_col(start)
+    found.warnings.append(f"{doc.path}:{line}:{col}: could not read this instruction's "
+                          "arguments; its points are not counted")
+
+
+def _moving_in(statement, wobj: str):
+    r"""The instruction of a statement that moves in work object ``wobj``
+    (casefolded), else None (an assignment such as p := CRobT(\WObj:=w)
+    reads a position, it does not move)."""
+    from lark import Tree
+
+    instr = next((c for c in statement.children if isinstance(c, Tree)
+                  and c.data == "instruction"), None)
+    if instr is None:
+        return None
+    for o in instr.children:
+        if isinstance(o, Tree) and o.data == "opt_arg" and len(o.children) > 1 \
+                and str(o.children[0]).casefold() == "wobj":
+            return instr if _text(o.children[1]).casefold() == wobj else None
+    return None
+
+
+def _names_moved_to(statement, wobj: str) -> list:
+    """Every name in the arguments of an instruction moving in ``wobj``."""
+    from lark import Token, Tree
+
+    instr = _moving_in(statement, wobj)
+    if instr is None:
+        return []
+    return [tok for arg in instr.children if isinstance(arg, Tree) and arg.data == "instr_arg"
+            for tok in arg.scan_values(lambda v: isinstance(v, Token) and v.type == "NAME")]
+
+
+def _points_of(statement, mod: _Module, index: _Index, wobj: str, found: Found, seen: set):
+    from lark import Tree
+
+    instr = _moving_in(statement, wobj)
+    if instr is None:
+        return
+    args = [c for c in instr.children if isinstance(c, Tree) and c.data == "instr_arg"]
+    doc = mod.doc
+    for k, arg in enumerate(args):
+        node = arg.children[0]
+        got = _resolve(node, mod, index, doc)
+        if got is not None:
+            key, point = got
+            if key not in seen:
+                seen.add(key)
+                found.points.append(point)
+        elif k == 0 and _CARTESIAN_MOVE.match(str(instr.children[0])):
+            _not_counted(node, mod, index, found, seen)
+
+
+def _not_counted(node, mod: _Module, index: _Index, found: Found, seen: set) -> None:
+    """Say why the target of a cartesian move is not counted (once per name)."""
+    from lark import Token, Tree
+
+    if not (isinstance(node, Tree) and node.data in ("name", "element", "call")):
+        return
+    doc = mod.doc
+    tok = next(node.scan_values(lambda v: isinstance(v, Token)))
+    name = _text(node)
+    key = ("not counted", doc.path, name.casefold())
+    if key in seen:
+        return
+    seen.add(key)
+    where = f"{doc.path}:{doc.line_of(tok.start_pos)}: {name}"
+    if node.data == "call":
+        found.warnings.append(f"{where}: a computed target: not counted")
+        return
+    base = node.children[0] if node.data == "element" else node
+    _, decl = index.lookup(mod, tok.start_pos, _text(base))
+    if decl is not None:
+        found.warnings.append(f"{where}: the robtarget has no value in the file (set at run "
+                              "time): not counted")
+    else:
+        found.warnings.append(f"{where}: not a robtarget declared in the modules of this "
+                              "folder (a routine parameter, or another task's data): "
+                              "not counted")
+
+
+def _resolve(node, mod: _Module, index: _Index, doc: Document):
+    """(dedup key, TaughtPoint) for an argument that is a robtarget, else None."""
+    from lark import Token, Tree
+
+    if not isinstance(node, Tree):
+        return None
+    kind = node.data
+    if kind == "name":
+        return _declared(_text(node), node.children[0].start_pos, mod, index)
+    if kind == "element":
+        base = node.children[0]
+        if not (isinstance(base, Tree) and base.data == "name"):
+            return None
+        return _declared(_text(node), base.children[0].start_pos, mod, index,
+                         array=_text(base))
+    if kind == "aggregate":
+        value = rapid._value(node)
+        t = _target(value)
+        if t is None:
+            return None
+        start = next(node.scan_values(lambda v: isinstance(v, Token))).start_pos
+        line = doc.line_of(start)
+        name = f"target at {Path(doc.path).name}:{line}"
+        return (doc.path, start), TaughtPoint(name, doc.path, line, t[0], t[1])
+    if kind == "call":
+        fname = str(node.children[0]).casefold()
+        if fname not in _OFFSET_FUNCS:
+            return None
+        args = [c for c in node.children[1:] if isinstance(c, Tree) and c.data == "arg"]
+        if len(args) < 4 or any(len(a.children) != 1 for a in args[:4]):
+            return None
+        inner = _resolve(args[0].children[0], mod, index, doc)
+        offsets = [rapid._value(a.children[0]) for a in args[1:4]]
+        if inner is None or not all(isinstance(o, Number) for o in offsets):
+            return inner      # the offset is computed: count the target it starts from
+        (key, p), d = inner, tuple(o.value for o in offsets)
+        if not any(d):
+            return inner        # Offs(p, 0, 0, 0) is p
+        if fname == "offs":     # in the object frame
+            xyz = tuple(a + b for a, b in zip(p.xyz, d))
+        else:                   # RelTool: along the target's own (tool) axes
+            if p.q is None:
+                return inner
+            r = matvec(quat_to_matrix(p.q), d)
+            xyz = tuple(a + b for a, b in zip(p.xyz, r))
+        name = f"{node.children[0]}({p.name},{','.join(f'{v:g}' for v in d)})"
+        return (key, fname, d), TaughtPoint(name, p.file, p.line, xyz)
+    return None
+
+
+def _declared(name: str, at: int, mod: _Module, index: _Index, array: str | None = None):
+    owner, decl = index.lookup(mod, at, array or name)
+    if decl is None:
+        return None
+    for ename, value in rapid._elements(decl.value, decl.dims, decl.name):
+        if ename.casefold() != name.casefold().replace(" ", ""):
+            continue
+        t = _target(value)
+        if t is None:
+            return None
+        start = rapid._start_of(value, decl.start)
+        doc = owner.doc
+        return (doc.path, start), TaughtPoint(ename, doc.path, doc.line_of(start), t[0], t[1])
+    return None

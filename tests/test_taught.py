@@ -1,0 +1,262 @@
+"""diff --points: the positions taught in a frame, and how far each moves in
+world when the measured frame replaces the simulated one. Expected
+displacements are computed here with scipy from the numbers in the files,
+independently of ucsio's frame algebra."""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import re
+import shutil
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from conftest import CORPUS, FIXTURES, corpus_file
+from ucsio.cli import main
+
+TAUGHT = FIXTURES / "taught"
+
+
+def run(*args) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return code, out.getvalue(), err.getvalue()
+
+
+def points_json(*args) -> tuple[dict, str]:
+    code, out, err = run("diff", *args, "--points", "--json")
+    assert code in (0, 1), err
+    return json.loads(out), err
+
+
+def abc(x, y, z, a, b, c):
+    """KUKA pose as (R, t): R = Rz(A) Ry(B) Rx(C), scipy's intrinsic 'ZYX'."""
+    return Rotation.from_euler("ZYX", [a, b, c], degrees=True), np.array([x, y, z], float)
+
+
+def quat(x, y, z, q):
+    """ABB pose as (R, t): q = [w, x, y, z]."""
+    return Rotation.from_quat(q, scalar_first=True), np.array([x, y, z], float)
+
+
+def world(chain, p):
+    p = np.asarray(p, float)
+    for r, t in reversed(chain):
+        p = r.apply(p) + t
+    return p
+
+
+def moved(sim, meas, p) -> float:
+    return float(np.linalg.norm(world(meas, p) - world(sim, p)))
+
+
+def solution(tmp_path, **frame) -> str:
+    path = tmp_path / "solution.json"
+    path.write_text(json.dumps({"frame": frame, "accepted": True}))
+    return str(path)
+
+
+# ------------------------------------------------------------------ KUKA
+
+KUKA_CONFIG = TAUGHT / "kuka" / "KRC" / "R1" / "System" / "$config.dat"
+BASE3 = (1500.0, -250.0, 600.0, 30.0, -2.5, 1.2)
+KUKA_MEAS = dict(x=1501.0, y=-249.0, z=600.5, a=30.5, b=-2.4, c=1.0)
+# E6POS/POS with an FDAT of BASE_NO 3 and IPO_FRAME #BASE, in the KRC tree
+KUKA_POINTS = {"XP1": (0.0, 0.0, 0.0), "XP2": (2000.0, 0.0, 0.0), "xp3": (-300.5, 800.25, 120.0),
+               "XGLOBAL1": (10.0, 20.0, 30.0)}
+
+
+def test_kuka_points_in_the_controllers_tree(tmp_path):
+    d, err = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
+                         solution(tmp_path, **KUKA_MEAS))
+    sim, meas = [abc(*BASE3)], [abc(*KUKA_MEAS.values())]
+    got = {p["name"]: p for p in d["points"]}
+    # XP4 is in base 1, XP5 taught with an external TCP, XP6 has no FDAT,
+    # and a commented-out FDAT is no frame data
+    assert set(got) == set(KUKA_POINTS)
+    for name, p in KUKA_POINTS.items():
+        assert got[name]["moved"] == pytest.approx(moved(sim, meas, p), abs=1e-9)
+    assert got["XP2"]["file"].endswith("seam.dat") and got["XP2"]["line"] == 10
+    assert got["XGLOBAL1"]["file"].endswith("$config.dat") and got["XGLOBAL1"]["line"] == 13
+    worst = max(KUKA_POINTS, key=lambda n: moved(sim, meas, KUKA_POINTS[n]))
+    pm = d["points_moved"]
+    assert pm["count"] == 4 and pm["worst"] == worst == "XP2"
+    assert pm["max"] == pytest.approx(moved(sim, meas, KUKA_POINTS["XP2"]), abs=1e-9)
+    assert pm["mean"] == pytest.approx(np.mean([moved(sim, meas, p) for p in KUKA_POINTS.values()]))
+    assert [p["moved"] for p in d["points"]] == sorted((p["moved"] for p in d["points"]),
+                                                       reverse=True)
+    assert "XP5" in err and "IPO_FRAME #TCP" in err
+    # a point 2 m out moves far more than the frame's own dt_mean says
+    assert pm["max"] > 10 * d["dt_mean"]
+
+
+def test_kuka_table_shows_worst_ten_and_count(tmp_path):
+    tree = tmp_path / "KRC" / "R1"
+    shutil.copytree(TAUGHT / "kuka" / "KRC" / "R1", tree)
+    lines = ["DEFDAT MANY"]
+    for i in range(1, 13):
+        lines.append(f"DECL E6POS XM{i}={{X {100.0 * i},Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0,S 2,T 2}}")
+        lines.append(f"DECL FDAT FM{i}={{TOOL_NO 1,BASE_NO 3,IPO_FRAME #BASE}}")
+    lines.append("ENDDAT")
+    (tree / "Program" / "many.dat").write_text("\n".join(lines) + "\n")
+    code, out, _ = run("diff", tree / "System" / "$config.dat", "--frame", "BASE_DATA[3]",
+                       "--measured", solution(tmp_path, **KUKA_MEAS), "--points")
+    assert code == 0
+    assert "taught points in BASE_DATA[3]: 16" in out
+    assert "(the 10 that move most)" in out
+    rows = out[out.index("moved mm"):].splitlines()[2:]
+    assert len(rows) == 10 and rows[0].startswith("XP2 ")
+    assert not any(r.startswith("XM1 ") for r in rows)     # 100 mm out: among the least moved
+
+
+def test_kuka_tree_from_the_corpus(tmp_path):
+    """A real KRC backup (Zinkerreka): $config.dat in R1/System, the program's
+    .dat in R1/Program/Work; BASE_NO 1 ("pickBP") holds two taught points."""
+    config = corpus_file("kuka", "Zinkerreka__KRC__R1__System__$config.dat")
+    program = corpus_file("kuka", "C1_pickConveyorBP.dat")
+    krc = tmp_path / "KRC"
+    (krc / "R1" / "System").mkdir(parents=True)
+    (krc / "R1" / "Program" / "Work").mkdir(parents=True)
+    shutil.copy(config, krc / "R1" / "System" / "$config.dat")
+    shutil.copy(program, krc / "R1" / "Program" / "Work" / "C1_pickConveyorBP.dat")
+    meas = dict(x=-1389.0, y=2088.5, z=164.0, a=91.5, b=0.1, c=0.2)
+    d, _ = points_json(krc / "R1" / "System" / "$config.dat", "--frame", "pickBP", "--measured",
+                       solution(tmp_path, **meas))
+    # what the file says, read here with a regex
+    text = program.read_text(encoding="latin-1")
+    base = {m.group(1) for m in re.finditer(r"DECL FDAT F(\w+)=\{[^}]*BASE_NO 1,IPO_FRAME #BASE",
+                                            text)}
+    assert base == {"p10", "homeConveyor1"}
+    cfg = config.read_text(encoding="latin-1")
+    b1 = re.search(r"^BASE_DATA\[1\]=\{X ([-\d.]+),Y ([-\d.]+),Z ([-\d.]+),A ([-\d.]+),"
+                   r"B ([-\d.]+),C ([-\d.]+)\}", cfg, re.M)
+    sim, m = [abc(*map(float, b1.groups()))], [abc(*meas.values())]
+    got = {p["name"]: p["moved"] for p in d["points"]}
+    assert set(got) == {"X" + n for n in base}
+    for n in base:
+        xyz = re.search(rf"DECL E6POS X{n}=\{{X ([-\d.]+),Y ([-\d.]+),Z ([-\d.]+)", text).groups()
+        assert got["X" + n] == pytest.approx(moved(sim, m, list(map(float, xyz))), abs=1e-9)
+
+
+def test_a_tool_has_no_taught_points(tmp_path):
+    d, err = points_json(FIXTURES / "kuka" / "cell_config.dat", "--frame", "TOOL_DATA[1]",
+                         "--measured", solution(tmp_path, **KUKA_MEAS))
+    assert d["points"] == [] and d["points_moved"]["count"] == 0
+    assert d["points_moved"]["max"] is None and "not a base" in err
+
+
+# ------------------------------------------------------------------ ABB
+
+U = (1200.0, -300.0, 450.0, [0.965926, 0, 0, 0.258819])
+O = (50.0, 20.0, 0.0, [0.996195, 0, 0.0871557, 0])
+ABB_MEAS = dict(x=1201.0, y=-299.0, z=450.5, q=[0.96, 0.01, 0.0, 0.28])
+P_REL = (100.0, 200.0, 30.0)
+Q_REL = [0, 0.707107, 0.707107, 0]
+# the robtargets moved to with \WObj:=wobjTable, and where they are in the object frame
+ABB_POINTS = {
+    "pA": (0, 0, 0), "pB": (2000, 0, 0), "grid{1}": (0, 500, 0), "grid{2}": (0, -500, 0),
+    "Offs(pA,0,0,100)": (0, 0, 100), "pShared": (-400, 250, -60), "pLocal": (0, 0, 800),
+    "target at Cell.mod:30": (300, 0, 0),
+    "RelTool(pRel,0,0,50)": tuple(np.add(P_REL, Rotation.from_quat(Q_REL, scalar_first=True)
+                                         .apply([0, 0, 50]))),
+}
+
+
+def _norm(q):
+    return list(np.asarray(q, float) / np.linalg.norm(q))
+
+
+def test_abb_robtargets_moved_to_in_the_work_object(tmp_path):
+    d, err = points_json(TAUGHT / "abb" / "Cell.mod", "--frame", "wobjTable", "--measured",
+                         solution(tmp_path, **dict(ABB_MEAS, q=_norm(ABB_MEAS["q"]))))
+    sim = [quat(*U), quat(*O)]
+    meas = [quat(ABB_MEAS["x"], ABB_MEAS["y"], ABB_MEAS["z"], _norm(ABB_MEAS["q"])), quat(*O)]
+    got = {p["name"]: p for p in d["points"]}
+    # not: pElsewhere (another wobj), pUnused (no wobj, a comment, a string),
+    # pNow (no value: warned), jHome (a joint target), Targets.mod's LOCAL pA
+    assert set(got) == set(ABB_POINTS)
+    for name, p in ABB_POINTS.items():
+        assert got[name]["moved"] == pytest.approx(moved(sim, meas, p), abs=1e-6), name
+    assert got["pShared"]["file"].endswith("Targets.mod") and got["pShared"]["line"] == 3
+    assert got["pA"]["line"] == 7 and got["pLocal"]["line"] == 18
+    assert "pNow" in err and "set at run time" in err
+    assert d["points_moved"]["worst"] == "pB"
+
+
+def test_abb_object_frame_measured(tmp_path):
+    """--frame wobjTable.oframe: the measured pose is the object frame in
+    world; the points go through it directly (world = M p)."""
+    m = dict(x=1260.0, y=-270.0, z=451.0, q=_norm([0.96, 0.0, 0.05, 0.27]))
+    d, _ = points_json(TAUGHT / "abb" / "Cell.mod", "--frame", "wobjTable.oframe", "--measured",
+                       solution(tmp_path, **m))
+    sim = [quat(*U), quat(*O)]
+    meas = [quat(m["x"], m["y"], m["z"], m["q"])]
+    got = {p["name"]: p["moved"] for p in d["points"]}
+    assert set(got) == set(ABB_POINTS)
+    for name, p in ABB_POINTS.items():
+        assert got[name] == pytest.approx(moved(sim, meas, p), abs=1e-6), name
+
+
+def test_abb_corpus_program(tmp_path):
+    """A real palletising program: the targets of the moves in wobjMesaCarton."""
+    src = corpus_file("abb", "PaletizadoCajasConFrascos__RAPID__TASK1__PROGMOD__MainModule.mod")
+    folder = tmp_path / "TASK1"
+    folder.mkdir()
+    shutil.copy(src, folder / "MainModule.mod")
+    text = src.read_text(encoding="latin-1")
+    # robtargets with a value, named in an instruction that moves in wobjMesaCarton
+    # (MoveL/MoveJ, and SearchL, whose target comes after the signal)
+    taught = set(re.findall(r"robtarget (\w+):=\[", text))
+    names = set()
+    for m in re.finditer(r"^\s*(?:Move[LJ]|SearchL)\s+([^;\n]*)\\WObj:=\s*wobjMesaCarton\s*;",
+                         text, re.M | re.I):
+        names |= taught & set(re.findall(r"\w+", m.group(1)))
+    wobj = re.search(r"wobjdata wobjMesaCarton:=\[FALSE,TRUE,\"\",\[\[([^\]]*)\],\[([^\]]*)\]\],"
+                     r"\[\[([^\]]*)\],\[([^\]]*)\]\]", text)
+    nums = [list(map(float, g.split(","))) for g in wobj.groups()]
+    sim = [quat(*nums[0], nums[1]), quat(*nums[2], nums[3])]
+    meas_pose = dict(x=nums[0][0] + 3, y=nums[0][1] - 2, z=nums[0][2] + 1,
+                     q=_norm(np.add(nums[1], [0.004, 0.0, 0.002, 0.003])))
+    meas = [quat(meas_pose["x"], meas_pose["y"], meas_pose["z"], meas_pose["q"]),
+            quat(*nums[2], nums[3])]
+    d, _ = points_json(folder / "MainModule.mod", "--frame", "wobjMesaCarton", "--measured",
+                       solution(tmp_path, **meas_pose))
+    got = {p["name"]: p["moved"] for p in d["points"]}
+    assert set(got) == names and len(names) == 3
+    for n in names:
+        trans = re.search(rf"robtarget {n}:=\[\[([^\]]*)\]", text).group(1)
+        assert got[n] == pytest.approx(moved(sim, meas, list(map(float, trans.split(",")))),
+                                       abs=1e-6)
+
+
+@pytest.mark.skipif(not (CORPUS / "abb").is_dir(), reason="the shared corpus is absent")
+def test_every_move_in_the_corpus_is_read_by_the_grammar():
+    """Every corpus statement with \\WObj:= that moves the robot parses with
+    the grammar's `statements` start symbol; the one it cannot read is a
+    real slip in a real file (Tool:= without its backslash), and it is an
+    assignment, so it is not warned about."""
+    from ucsio.document import Document
+    from ucsio.taught import abb
+
+    n = 0
+    unread = []
+    for path in sorted((CORPUS / "abb").iterdir()):
+        try:
+            mod = abb._read_module(Document.read(path))
+        except Exception:  # encrypted modules: refused by the outline, as by `frames`
+            continue
+        n += len(mod.statements)
+        unread += [(path.name, mod.doc.line_of(s.start)) for t, s in mod.statements if t is None]
+    assert n > 600
+    assert unread == [("Fabio-Coder__Robo_ABB_Injetora-Rotinas_de_ajuste__HOME____MODULI____"
+                       "UTILITY.sys", 90)]
+
+
+def test_points_needs_frame_and_measured():
+    code, _, err = run("diff", TAUGHT / "abb" / "Cell.mod", TAUGHT / "abb" / "Cell.mod",
+                       "--points")
+    assert code == 2 and "--points go with --frame and --measured" in err
