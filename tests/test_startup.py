@@ -31,6 +31,7 @@ def test_light_commands_import_no_numpy_or_scipy(tmp_path):
     for args in (["frames", mod], ["check", mod], ["diff", mod, mod],
                  ["diff", "--textconv", mod],
                  ["diff", mod, "--frame", "wobjA", "--measured", sol],
+                 ["diff", mod, "--frame", "wobjA", "--measured", sol, "--points"],
                  ["patch", mod, "--frame", "wobjA", "--measured", sol]):
         out = probe(*args)
         assert out["heavy"] == [], (args, out)
