@@ -5,9 +5,9 @@ value spans (``Frame.numbers``), in the vendor's native form:
 
 - ABB (``wobjdata`` uframe/oframe, ``tooldata`` tframe, ``pose``): x, y, z and
   the quaternion q1..q4. Translations to 0.001 mm; quaternion components to 6
-  decimals, normalised *after* rounding: the components that moved are nudged
-  by at most a few 1e-6 so that the text, parsed back, has |sum q^2 - 1| <=
-  1e-6 (FORMATS.md 1.6). Written with q1 >= 0 (SPEC); where q1 rounds to 0,
+  decimals, normalised *after* rounding (SPEC, ``quat_to_write``): plain
+  rounding where the text, parsed back, has |sum q^2 - 1| <= 1e-6 (FORMATS.md
+  1.6), else the 6-decimal quaternion within that bound nearest in rotation. Written with q1 >= 0 (SPEC); where q1 rounds to 0,
   the sign on the old value's side (positive dot product) keeps the diff
   small.
 - KUKA (``BASE_DATA``, ``TOOL_DATA``, ``FRAME``): X, Y, Z to 0.001 mm and A, B,
@@ -145,11 +145,51 @@ def _translation_changes(frame: Frame, pose: Pose, point: bool) -> list[Change]:
     return out
 
 
-# Nudges (in units of the last written decimal) tried on the rewritten
-# quaternion components, fewest first.
-_NUDGES = {n: sorted(itertools.product((0, -1, 1, -2, 2), repeat=n),
-                     key=lambda ks: (sum(map(abs, ks)), [abs(k) for k in ks]))
-           for n in range(5)}
+def _rotation_gap(c: list[float], q: list[float]) -> float:
+    """Radians of the rotation between the (not quite unit) quaternion ``c``
+    as a controller reads it (normalised) and the unit quaternion ``q``:
+    2 atan2(|c x q part|, |c . q|), accurate near 0."""
+    dot = sum(a * b for a, b in zip(c, q))
+    cc = sum(a * a for a in c)
+    perp2 = max(cc - dot * dot, 0.0)        # |c|^2 - (c.q)^2: the part of c off q's axis
+    return 2.0 * math.atan2(math.sqrt(perp2), abs(dot))
+
+
+def _quat_candidates(q: list[float], reach: int):
+    """6-decimal quaternions around ``q``: every component within ``reach``
+    steps of q_i's floor/ceiling (reach 0: floor or ceiling only)."""
+    step = 10.0 ** -QUAT_DECIMALS
+    options = []
+    for v in q:
+        lo = math.floor(round(v / step, 3))
+        hi = math.ceil(round(v / step, 3))
+        # as the text will parse: round(k * step) is float('0.653282'), k * step is not
+        options.append(sorted({round(k * step, QUAT_DECIMALS)
+                               for k in range(lo - reach, hi + reach + 1)}))
+    return itertools.product(*options)
+
+
+def quat_to_write(q: list[float]) -> list[float]:
+    """The 6-decimal quaternion written for unit quaternion ``q`` (SPEC,
+    "Files ucsio writes"): plain rounding where that gives |sum q^2 - 1| <=
+    1e-6; else, among the 6-decimal quaternions within that bound, the one
+    nearest in rotation to ``q``, looking first only at each component's floor
+    and ceiling (so every component stays within one step of the exact value)
+    and further out only where no such candidate meets the bound."""
+    plain = [round(v, QUAT_DECIMALS) for v in q]
+    if abs(sum(c * c for c in plain) - 1.0) <= QUAT_NORM_MAX:
+        return plain
+    for reach in (0, 1, 2):
+        best = None
+        for cand in _quat_candidates(q, reach):
+            if abs(sum(c * c for c in cand) - 1.0) > QUAT_NORM_MAX:
+                continue
+            gap = _rotation_gap(list(cand), q)
+            if best is None or gap < best[0]:
+                best = (gap, list(cand))
+        if best is not None:
+            return best[1]
+    raise UcsioError(f"cannot write {q} as a normalised 6-decimal quaternion")  # pragma: no cover
 
 
 def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
@@ -167,38 +207,18 @@ def _quat_changes(frame: Frame, pose: Pose) -> list[Change]:
     q = list(pose.q)
     if abs(q[0]) < half and sum(a * b for a, b in zip(old, q)) < 0:
         q = [-c for c in q]
-    step = 10.0 ** -QUAT_DECIMALS
     style = _column(nums, QUAT_DECIMALS)
-
-    def attempt(keep: list[bool]):
-        base = [old[i] if keep[i] else round(q[i], QUAT_DECIMALS) for i in range(4)]
-        free = [i for i in range(4) if not keep[i]]
-        best = None
-        for ks in _NUDGES[len(free)]:
-            vals = list(base)
-            for i, k in zip(free, ks):
-                vals[i] = round(base[i] + k * step, QUAT_DECIMALS)
-            err = abs(sum(c * c for c in vals) - 1.0)
-            if best is None or err < best[0]:
-                best = (err, vals)
-            if err <= 0.5 * QUAT_NORM_MAX:      # the fewest nudges that fit with margin
-                break
-        vals = best[1]
-        texts = [nums[i].written if keep[i] else
-                 format_number(vals[i], QUAT_DECIMALS, old_text=style) for i in range(4)]
-        parsed = [old[i] if keep[i] else _parse_text(texts[i]) for i in range(4)]
-        if abs(sum(c * c for c in parsed) - 1.0) > QUAT_NORM_MAX:
-            return None
-        return texts, parsed
-
+    # A component that does not move at the written precision keeps its text,
+    # so the diff shows only what moved, where the kept text still gives a
+    # quaternion within the norm bound; otherwise all four are written.
     keep = [abs(q[i] - old[i]) <= half for i in range(4)]
-    result = attempt(keep) if any(keep) else None
-    if result is None:
+    vals = [old[i] if keep[i] else round(q[i], QUAT_DECIMALS) for i in range(4)]
+    if not any(keep) or abs(sum(c * c for c in vals) - 1.0) > QUAT_NORM_MAX:
         keep = [False] * 4
-        result = attempt(keep)
-    if result is None:  # pragma: no cover - rounding a unit quaternion always fits
-        raise UcsioError(f"{frame.name}: cannot write a normalised quaternion", file=frame.file)
-    texts, parsed = result
+        vals = quat_to_write(q)
+    texts = [nums[i].written if keep[i] else format_number(vals[i], QUAT_DECIMALS, old_text=style)
+             for i in range(4)]
+    parsed = [old[i] if keep[i] else _parse_text(texts[i]) for i in range(4)]
     return [Change(f"q{i + 1}", nums[i].written, texts[i], nums[i].value, parsed[i])
             for i in range(4) if not keep[i] and texts[i] != nums[i].written]
 
