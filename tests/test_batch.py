@@ -517,7 +517,7 @@ def _abb_cell(folder: Path, *, sibling: bool = False, csv_name: str = "m.csv"):
 
 
 _GOOD = ("[[entry]]\nname = 'good'\nmeasurement = 'm.csv'\ncontroller = 'cell.mod'\n"
-         "frame = 'wobj1.oframe'\n")
+         "frame = 'wobj1.oframe'\ntcp = [0, 0, 0]\n")
 
 
 def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
@@ -526,7 +526,7 @@ def test_oframe_is_diffed_in_its_user_frame(tmp_path, capsys):
     _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(
         "[[entry]]\nname = 'o'\nmeasurement = 'm.csv'\ncontroller = 'cell.mod'\n"
-        "frame = 'wobj1.oframe'\n")
+        "frame = 'wobj1.oframe'\ntcp = [0, 0, 0]\n")
     code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
     e = json.loads(out)["entries"][0]
     assert code == 0 and e["pass"]
@@ -607,7 +607,7 @@ def test_outputs_survive_any_missing_value(tmp_path):
     r0 = res.entries[0]
     parts = {"solution": [r0.solution, None, NS(n_points=None, n_used=None, rms=None, max=None,
                                                   mean=None, accepted=True, points=[],
-                                                  uncertainty=None, tcp=None)],
+                                                  uncertainty=None, tcp=None, precision=None)],
              "delta": [r0.delta, None], "measured": [r0.measured, None],
              "simulated": [r0.simulated, None], "error": [None, "boom"],
              "patch_error": [None, "refused"], "patched": [None, "x.mod"]}
@@ -628,7 +628,7 @@ def test_refused_patch_is_shown(tmp_path, capsys):
     _abb_cell(tmp_path, sibling=True)
     (tmp_path / "m.toml").write_text(
         _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
-        "frame = 'wobj1'\n")
+        "frame = 'wobj1'\ntcp = [0, 0, 0]\n")
     out_dir = tmp_path / "patched"
     code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir),
                               "--csv", str(tmp_path / "o.csv"), "--report", str(tmp_path / "o.html")],
@@ -675,7 +675,7 @@ def test_oframe_uncertainty_in_user_frame_axes(tmp_path, capsys):
     U, O_true = _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(
         _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
-        "frame = 'wobj1'\n")
+        "frame = 'wobj1'\ntcp = [0, 0, 0]\n")
     code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json", "--uncertainty", "400"],
                            capsys)
     o, u = json.loads(out)["entries"]
@@ -722,12 +722,12 @@ def test_unjudged_three_point_set_is_rejected_as_solve_rejects_it(tmp_path, caps
         'MODULE cell\n  PERS wobjdata w:=[FALSE,TRUE,"",[[1000,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
         "ENDMODULE\n")
     (tmp_path / "m.toml").write_text("[defaults]\nmin_points = 3\n[[entry]]\nname = 'three'\n"
-                                     "measurement = 'three.csv'\ncontroller = 'cell.mod'\nframe = 'w'\n")
+                                     "measurement = 'three.csv'\ncontroller = 'cell.mod'\nframe = 'w'\ntcp = [0, 0, 0]\n")
     code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--json"], capsys)
     data = json.loads(out)
     e = data["entries"][0]
     assert code == 1 and e["accepted"] is False and data["summary"]["rejected"] == 1
-    code, out, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--min-points", "3", "--json"], capsys)
+    code, out, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--tcp", "0,0,0", "--min-points", "3", "--json"], capsys)
     assert code == 1 and json.loads(out)["accepted"] is False
 
 
@@ -749,8 +749,8 @@ def _two_rejections(tmp_path):
     (tmp_path / "few.csv").write_text("\n".join(few) + "\n")
     (tmp_path / "m.toml").write_text(
         "[[entry]]\nname = 'three'\nmeasurement = 'three.csv'\ncontroller = 'cell.mod'\n"
-        "frame = 'w'\nmin_points = 3\n"
-        "[[entry]]\nname = 'few'\nmeasurement = 'few.csv'\ncontroller = 'cell.mod'\nframe = 'w'\n")
+        "frame = 'w'\ntcp = [0, 0, 0]\nmin_points = 3\n"
+        "[[entry]]\nname = 'few'\nmeasurement = 'few.csv'\ncontroller = 'cell.mod'\nframe = 'w'\ntcp = [0, 0, 0]\n")
 
 
 def test_rejection_reason_in_json_csv_and_report(tmp_path, capsys):
@@ -792,7 +792,7 @@ def test_rejected_solution_file_gives_its_reason(tmp_path, capsys):
 
     (tmp_path / "three.csv").write_text(_THREE)
     sol = tmp_path / "s.json"
-    code, _, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--min-points", "3",
+    code, _, _ = run_cli(["solve", str(tmp_path / "three.csv"), "--tcp", "0,0,0", "--min-points", "3",
                           "-o", str(sol)], capsys)
     data = json.loads(sol.read_text())
     assert code == 1 and data["accepted"] is False and data["reason"]
@@ -851,7 +851,7 @@ def _two_frames_one_file(tmp_path):
         "[[0,0,0],[1,0,0,0]]];\nENDMODULE\n")
     (tmp_path / "m.toml").write_text(
         _GOOD + "[[entry]]\nname = 'u'\nmeasurement = 'u.csv'\ncontroller = 'cell.mod'\n"
-        "frame = 'wobj1'\n")
+        "frame = 'wobj1'\ntcp = [0, 0, 0]\n")
 
 
 def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):

@@ -310,16 +310,21 @@ def test_cli_uncertainty_json(capsys):
 def test_cli_no_exclusion_and_threshold(capsys):
     rc, out, _ = run_cli(capsys, str(KUKA), "--tcp", KUKA_TCP, "--no-exclusion", "--json")
     d = json.loads(out)
-    assert rc == 0 and d["n_used"] == 8 and d["max"] > 2.0
+    assert d["n_used"] == 8 and d["max"] > 2.0
+    # the kept blunder is in the residuals' noise estimate, and the gate judges with it
+    assert d["precision"]["sigma"] > 0.5
+    assert rc == 1 and not d["accepted"] and "pin the orientation" in d["reason"]
 
 
 @pytest.mark.parametrize("argv, words", [
     (["--tcp", "1,2"], "--tcp '1,2'"),
     (["--tcp", "a,b,c"], "expected three numbers"),
-    (["--exclude", "nope"], "no such point"),
+    (["--tcp", KUKA_TCP, "--exclude", "nope"], "no such point"),
     (["--tool", "nofile"], "expected FILE:NAME"),
     (["--uncertainty", "1"], "at least 2") ,
     (["-o", "/nonexistent/dir/s.json"], "does not exist"),
+    ([], "no TCP given"),
+    (["--tcp", KUKA_TCP, "--reach", "-5"], "--reach"),
 ])
 def test_cli_bad_input_exit_2(capsys, argv, words):
     rc, out, err = run_cli(capsys, str(KUKA), *argv)
@@ -331,10 +336,10 @@ def test_cli_bad_measurement_names_line(capsys, tmp_path):
     f = tmp_path / "m.csv"
     f.write_text(KUKA.read_text().replace("P3,1199.982", "P3,1199.9x2"))
     out_file = tmp_path / "s.json"
-    rc, out, err = run_cli(capsys, str(f), "-o", str(out_file))
+    rc, out, err = run_cli(capsys, str(f), "--tcp", KUKA_TCP, "-o", str(out_file))
     assert rc == 2 and f"{f}:12:4: laser_x not a number" in err
     assert not out_file.exists()
-    rc, out, err = run_cli(capsys, str(tmp_path / "missing.csv"))
+    rc, out, err = run_cli(capsys, str(tmp_path / "missing.csv"), "--tcp", "0,0,0")
     assert rc == 2 and "no such file (the measurement file)" in err
 
 
@@ -343,7 +348,7 @@ def test_cli_collinear_exit_2(capsys, tmp_path):
     rows = ["laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
     rows += [f"{100 * i},0,0,{1000 + 100 * i},0,0,0,0,0" for i in range(7)]
     f.write_text("\n".join(rows) + "\n")
-    rc, out, err = run_cli(capsys, str(f))
+    rc, out, err = run_cli(capsys, str(f), "--tcp", "0,0,0")
     assert rc == 2 and "line" in err and str(f) in err
 
 
@@ -421,7 +426,8 @@ def test_cli_tool_from_real_rapid_file(capsys, name, rc, words):
                                           ("--sigma-laser", "inf")])
 def test_bad_noise_levels_are_refused(option, value, capsys):
     from ucsio.cli import main
-    rc = main(["solve", str(FIXTURES / "abb_wobj.csv"), "--uncertainty", "10", option, value])
+    rc = main(["solve", str(FIXTURES / "abb_wobj.csv"), "--tcp", "0,0,0", "--uncertainty", "10",
+               option, value])
     err = capsys.readouterr().err
     assert rc == 2 and option in err and err.count("\n") == 1
 
@@ -438,15 +444,16 @@ C,0,500,0,1000,520,0,0,0,0
 def test_three_points_over_threshold_are_rejected_not_accepted(capsys, tmp_path):
     f = tmp_path / "three_bad.csv"
     f.write_text(THREE_BAD)
-    rc, out, err = run_cli(capsys, str(f), "--min-points", "3", "--json")
+    rc, out, err = run_cli(capsys, str(f), "--tcp", "0,0,0", "--min-points", "3", "--json")
     assert rc == 1 and err == ""
     d = json.loads(out)
     assert d["accepted"] is False and d["n_used"] == 3 and d["max"] > 12.0
     assert "no point can be singled out" in d["reason"] and "at least 4 points" in d["reason"]
-    # --no-exclusion keeps every point: then the count alone decides
-    rc, out, err = run_cli(capsys, str(f), "--min-points", "3", "--no-exclusion", "--json")
+    # --no-exclusion keeps every point; the residuals' noise then fails the determinacy gate
+    rc, out, err = run_cli(capsys, str(f), "--tcp", "0,0,0", "--min-points", "3",
+                           "--no-exclusion", "--json")
     d = json.loads(out)
-    assert rc == 0 and d["accepted"] is True and d["reason"] is None
+    assert rc == 1 and d["accepted"] is False and "pin the orientation" in d["reason"]
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2, 3, 4, 7, 8])
@@ -457,14 +464,21 @@ def test_exclusion_down_to_three_points_still_over_threshold_is_rejected(seed):
     assert not sol.accepted
     assert sol.reason.startswith("residuals over the threshold and no point can be singled out")
     assert sol.as_dict()["reason"] == sol.reason
+    # every point kept: 4 mm of noise cannot pin a frame down to 1.5 mm at 1 m
     sol = solve_points(names, laser, robot, min_points=3, no_exclusion=True)
-    assert sol.accepted and sol.n_used == 6 and sol.reason is None
+    assert not sol.accepted and sol.n_used == 6 and "pin the orientation" in sol.reason
 
 
-def test_exclusion_down_to_three_points_within_threshold_is_accepted():
+def test_exclusion_down_to_three_points_within_threshold_then_the_gate():
     names, laser, robot, *_ = pointset(9, n=6, noise=4.0)
     sol = solve_points(names, laser, robot, min_points=3)
-    assert sol.n_used == 3 and sol.max <= sol.threshold and sol.accepted and sol.reason is None
+    # the residual rule is satisfied; the determinacy gate has the last word: three
+    # points left from a 4 mm scatter do not fix the frame at 1 m, but do near them
+    assert sol.n_used == 3 and sol.max <= sol.threshold
+    assert not sol.accepted and "pin the orientation" in sol.reason
+    near = solve_points(names, laser, robot, min_points=3, reach=20.0)
+    assert near.n_used == 3 and near.accepted and near.reason is None
+    assert near.precision["at_reach"] < sol.precision["at_reach"]
 
 
 def test_wrong_tcp_is_rejected_whatever_min_points(capsys):
@@ -513,7 +527,7 @@ def test_rejected_solution_built_elsewhere_still_has_a_reason():
 def test_text_output_prints_the_reason(capsys, tmp_path):
     f = tmp_path / "three_bad.csv"
     f.write_text(THREE_BAD)
-    rc, out, err = run_cli(capsys, str(f), "--min-points", "3")
+    rc, out, err = run_cli(capsys, str(f), "--tcp", "0,0,0", "--min-points", "3")
     assert rc == 1
     assert "residuals over the threshold and no point can be singled out" in out
 
@@ -521,7 +535,7 @@ def test_text_output_prints_the_reason(capsys, tmp_path):
 def test_no_exclusion_warns_about_points_over_the_threshold(capsys):
     from ucsio.cli import main
     rc = main(["solve", str(FIXTURES / "kuka_base3.csv"), "--tcp", "-20.67,89.73,33.44",
-               "--no-exclusion", "--json"])
+               "--no-exclusion", "--min-points", "3", "--reach", "0", "--json"])
     out = json.loads(capsys.readouterr().out)
     assert rc == 0 and out["accepted"]
     assert len(out["warnings"]) == 1 and "P6" in out["warnings"][0]

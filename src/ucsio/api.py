@@ -50,10 +50,12 @@ def frame(path: PathLike | ControllerFile, name: str) -> Frame:
     return _cell(path).frame(name)
 
 
-def solve(csv: PathLike, tcp=(0.0, 0.0, 0.0), **options):
+def solve(csv: PathLike, tcp, **options):
     """Solve a measurement file (``ucsio solve``): returns the solver's
-    Solution (``.pose``, ``.accepted``, ``.points``, ``.rms``, ``.as_dict()``).
-    ``options``: threshold, min_points, exclude, no_exclusion."""
+    Solution (``.pose``, ``.accepted``, ``.points``, ``.rms``, ``.precision``,
+    ``.as_dict()``). ``tcp``: the reflector in flange coordinates (x, y, z) mm,
+    no default (SPEC: never a silent 0,0,0). ``options``: threshold,
+    min_points, exclude, no_exclusion, reach, sigma_laser, sigma_robot."""
     from .measurement import read_measurement
     from .solve import solve as _solve
     return _solve(read_measurement(csv), tcp, **options)

@@ -36,7 +36,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .defaults import MIN_POINTS, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
+from .defaults import MIN_POINTS, REACH, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
 from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
 from .errors import UcsioError
 from .files import atomic_write_text, read_bytes
@@ -45,7 +45,7 @@ from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is whe
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
 ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
-              "min_points", "tolerance", "exclude", "no_exclusion")
+              "min_points", "tolerance", "exclude", "no_exclusion", "reach")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("measurement", "controller", "frame")
 
@@ -68,6 +68,7 @@ class Entry:
     tolerance: float = DEFAULT_TOLERANCE
     exclude: tuple[str, ...] = ()
     no_exclusion: bool = False
+    reach: float = REACH
     problem: str | None = None        # why this entry cannot run (a bad value in its table)
 
 
@@ -119,7 +120,7 @@ def _check_values(table: dict, where: str, path: str) -> None:
                              file=path)
         for c in v:
             _number(c, "tcp", where, path)
-    for k in ("threshold", "tolerance"):
+    for k in ("threshold", "tolerance", "reach"):
         if k in table:
             _number(table[k], k, where, path, positive=True)
     if "min_points" in table:
@@ -154,8 +155,13 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
     if "tool" in merged:
         file, _, tname = merged["tool"].rpartition(":")
         tool = f"{_resolve(base, file)}:{tname}"
-    else:
-        tcp = tuple(float(c) for c in merged.get("tcp", [0.0, 0.0, 0.0]))
+    elif "tcp" in merged:
+        tcp = tuple(float(c) for c in merged["tcp"])
+    else:       # SPEC point 8: never a silent 0,0,0
+        raise UcsioError(f"{label}: no TCP: give tcp = [x, y, z] (mm, in flange coordinates; "
+                         "[0, 0, 0] says the points are flange positions), tool = "
+                         "\"FILE:NAME\" or tcp = \"solve\", in the entry or in [defaults]",
+                         file=path)
     ex = merged.get("exclude", [])
     if isinstance(ex, str):
         ex = [ex]
@@ -164,7 +170,8 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  tcp=tcp, tool=tool, threshold=float(merged.get("threshold", THRESHOLD)),
                  min_points=merged.get("min_points", MIN_POINTS),
                  tolerance=float(merged.get("tolerance", DEFAULT_TOLERANCE)),
-                 exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False))
+                 exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False),
+                 reach=float(merged.get("reach", REACH)))
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -318,7 +325,7 @@ class EntryResult:
         s = self.solution
         if s is not None:
             d.update({"n_points": s.n_points, "n_used": s.n_used, "rms": s.rms, "mean": s.mean,
-                      "max": s.max})
+                      "max": s.max, "precision": s.precision})
             if points:
                 d["points"] = [{"name": p.name, "residual": p.residual,
                                 "loo_residual": p.loo_residual if math.isfinite(p.loo_residual)
@@ -411,7 +418,7 @@ def _entry_uncertainty(r: EntryResult, meas, cf, frame, n: int, sigma_laser: flo
     coordinates as the frame; the noise is isotropic, so its model is the
     same in either axes, and the angle (a magnitude) does not change."""
     from .patch import measured_in_parent
-    from .solve import solution_uncertainty, uncertainty
+    from .solve import residual_sigma, solution_uncertainty, uncertainty
 
     sol = r.solution
     ident = Pose.from_quat(0.0, 0.0, 0.0, (1.0, 0.0, 0.0, 0.0))
@@ -425,7 +432,8 @@ def _entry_uncertainty(r: EntryResult, meas, cf, frame, n: int, sigma_laser: flo
     R = np.array(to_parent.matrix, dtype=float)
     robot = robot @ R.T + np.array(to_parent.t, dtype=float)
     sol.uncertainty = uncertainty(meas.laser[used], robot, (0.0, 0.0, 0.0),
-                                  meas.weights[used], n, sigma_laser, sigma_robot, seed)
+                                  meas.weights[used], n, sigma_laser, sigma_robot, seed,
+                                  sigma_residual=residual_sigma(sol))
     r.uncertainty_axes = "uframe"
 
 
@@ -469,7 +477,9 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                                     robot=meas.robot_points(tcp), weights=meas.weights,
                                     threshold=en.threshold, min_points=en.min_points,
                                     exclude=en.exclude, no_exclusion=en.no_exclusion,
-                                    lines=meas.lines, path=meas.path))
+                                    lines=meas.lines, path=meas.path,
+                                    sigma_stated=math.hypot(sigma_laser, sigma_robot),
+                                    reach=en.reach))
             owners.append(k)
             read[k] = (tcp, meas)
         except UcsioError as exc:
@@ -692,9 +702,9 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
 
 CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "dx", "dy", "dz",
                "da", "db", "dc", "angle", "dist", "x", "y", "z", "a", "b", "c",
-               "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "tolerance",
-               "measurement", "controller", "frame", "error", "patched", "patch_error",
-               "reason")
+               "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "at_reach",
+               "angle_std", "sigma", "tolerance", "measurement", "controller", "frame", "error",
+               "patched", "patch_error", "reason")
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -711,6 +721,8 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
                "reason": r.reason or ""}
         for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist"):
             row[k] = d.get(k)
+        if s is not None and s.precision:
+            row.update({k: s.precision[k] for k in ("at_reach", "angle_std", "sigma")})
         if m is not None:
             row.update(zip(("x", "y", "z", "a", "b", "c"), (m.x, m.y, m.z, *m.abc)))
             row.update(zip(("q1", "q2", "q3", "q4"), m.q))

@@ -6,3 +6,9 @@ MIN_POINTS = 6           # fewer used points than this rejects a dataset
 TOLERANCE = 100.0        # mm: a frame passes when dt_mean is below this
 SIGMA_LASER = 0.015      # mm per axis: laser tracker noise for --uncertainty
 SIGMA_ROBOT = 0.05       # mm per axis: robot noise for --uncertainty
+REACH = 1000.0           # mm: the determinacy gate judges a point this far from the centroid
+#: Largest magnitude of any input number (mm, deg, weight) a fit accepts: beyond
+#: it float64 cannot resolve a micrometre (1e9 * 2.2e-16 = 2e-7 mm), squares
+#: stay far from overflow, and no cell is 1,000 km across: it is a unit or
+#: export error.
+MAX_MAGNITUDE = 1e9

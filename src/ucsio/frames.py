@@ -149,4 +149,8 @@ def tool_tcp(frame: Frame, what: str = "tool") -> tuple[float, float, float]:
     if frame.pose is None:
         raise UcsioError(f"{what}: {frame.name} has no complete value", file=frame.file,
                          line=frame.line)
+    from .defaults import MAX_MAGNITUDE
+    if any(abs(v) > MAX_MAGNITUDE for v in frame.pose.t):
+        raise UcsioError(f"{what}: {frame.name}'s TCP {frame.pose.t} is too large for a fit "
+                         f"(at most {MAX_MAGNITUDE:.0e} mm)", file=frame.file, line=frame.line)
     return frame.pose.t

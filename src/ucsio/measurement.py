@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .defaults import MAX_MAGNITUDE
 from .errors import UcsioError
 from .files import read_bytes
 
@@ -133,6 +134,12 @@ def flange_matrices(form: str, orientation: np.ndarray, position: np.ndarray) ->
 
 
 # ---------------------------------------------------------------- reading
+
+def too_large(what: str, text: str) -> str:
+    """The error for a number no fit can use (``defaults.MAX_MAGNITUDE``)."""
+    return (f"{what} {text} is too large for a fit: at most {MAX_MAGNITUDE:.0e} in magnitude "
+            "(double precision cannot resolve a micrometre beyond it; a unit or export error?)")
+
 
 def _split(line: str, sep: str) -> list[tuple[str, int]]:
     """Fields of one line with their 1-based start column; double quotes
@@ -269,6 +276,8 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
             raise UcsioError(f"{key} {what}", file=path, line=lineno, col=col) from None
         if not math.isfinite(v):
             raise UcsioError(f"{key} is not finite: {text!r}", file=path, line=lineno, col=col)
+        if abs(v) > MAX_MAGNITUDE:
+            raise UcsioError(too_large(key, text.strip()), file=path, line=lineno, col=col)
         return v
 
     for r, (lineno, fields) in enumerate(rows):

@@ -77,6 +77,7 @@ class Solution:
     no_exclusion: bool = False
     uncertainty: dict[str, Any] | None = None
     reason: str | None = None    # why the dataset was rejected (None when accepted)
+    precision: dict[str, Any] | None = None  # the determinacy gate's numbers (SPEC point 7)
 
     def __post_init__(self) -> None:
         # a Solution built elsewhere (the batched solver) without a reason still says why
@@ -113,6 +114,7 @@ class Solution:
             "n_points": self.n_points, "n_used": self.n_used,
             "rms": self.rms, "mean": self.mean, "max": self.max,
             "accepted": self.accepted, "reason": self.reason, "warnings": self.warnings,
+            "precision": self.precision,
             "settings": {"tcp": list(self.tcp), "tool": self.tool, "threshold": self.threshold,
                          "min_points": self.min_points, "no_exclusion": self.no_exclusion,
                          "source": self.source},
@@ -165,7 +167,9 @@ def acceptance(n_used: int, max_residual: float, *, threshold: float, min_points
 def solve_points(names: Sequence[str], laser, robot, weights=None, *,
                  threshold: float = DEFAULT_THRESHOLD, min_points: int = DEFAULT_MIN_POINTS,
                  exclude: Iterable[str] = (), no_exclusion: bool = False,
-                 lines: Sequence[int | None] | None = None) -> Solution:
+                 lines: Sequence[int | None] | None = None, reach: float = defaults.REACH,
+                 sigma_laser: float = DEFAULT_SIGMA_LASER,
+                 sigma_robot: float = DEFAULT_SIGMA_ROBOT) -> Solution:
     """The method on points already in robot world (robot = flange * tcp):
     a batch of one through ``solve_many``, so ``solve`` and ``batch`` share
     one implementation of the exclusion rule."""
@@ -179,10 +183,15 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
         raise UcsioError(f"threshold must be positive, got {threshold}")
     if min_points < 3:
         raise UcsioError(f"min-points must be at least 3, got {min_points}")
+    if not (math.isfinite(reach) and reach >= 0):
+        raise UcsioError(f"--reach {reach}: a distance must be a finite number >= 0 (mm)")
+    check_sigmas(sigma_laser, sigma_robot)
     result = solve_many([Dataset(names=list(names), laser=laser, robot=robot, weights=weights,
                                  threshold=threshold, min_points=min_points,
                                  exclude=tuple(exclude), no_exclusion=no_exclusion,
-                                 lines=None if lines is None else list(lines))])[0]
+                                 lines=None if lines is None else list(lines),
+                                 sigma_stated=math.hypot(sigma_laser, sigma_robot),
+                                 reach=float(reach))])[0]
     if isinstance(result, UcsioError):
         raise result
     return result
@@ -208,6 +217,8 @@ class Dataset:
     no_exclusion: bool = False
     lines: list[int] | None = None
     path: str | None = None      # for error messages
+    sigma_stated: float = math.hypot(defaults.SIGMA_LASER, defaults.SIGMA_ROBOT)
+    reach: float = defaults.REACH
 
 
 def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
@@ -250,8 +261,76 @@ def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
     return out
 
 
+def _unusable(d: Dataset) -> UcsioError | None:
+    """Numbers no fit can use (the readers name the line; this is the net for
+    every other caller): not finite, or so large that float64 cannot resolve
+    a micrometre; weights over the same bound. Within these, Horn's sums
+    cannot overflow."""
+    limit = 4 * defaults.MAX_MAGNITUDE           # a flange position through a TCP: |p| + |tcp|
+    for what, arr in (("laser", d.laser), ("robot", d.robot)):
+        if not np.all(np.isfinite(arr)) or (arr.size and np.abs(arr).max() > limit):
+            return UcsioError(f"{what} coordinates not finite or beyond {limit:.0e} mm: "
+                              "double precision cannot fit them", file=d.path)
+    w = d.weights
+    if not np.all(np.isfinite(w)) or np.any(w <= 0) or np.any(w > defaults.MAX_MAGNITUDE):
+        return UcsioError(f"weights must be positive and at most {defaults.MAX_MAGNITUDE:.0e}",
+                          file=d.path)
+    return None
+
+
+def _precision(data: Sequence[Dataset], final: dict[int, tuple],
+               used: dict[int, np.ndarray]) -> dict[int, dict[str, Any]]:
+    """The determinacy gate's numbers (``ucsio.precision``) for every final
+    fit, in one batched call: ``precision`` with sigma, angle_std, reach,
+    at_reach, plus the rejection reason where at_reach exceeds the threshold."""
+    from . import precision as prec
+
+    order = list(final)
+    if not order:
+        return {}
+    n = max(len(data[i].names) for i in order)
+    L = np.zeros((len(order), n, 3))
+    W = np.zeros((len(order), n))
+    Rs = np.empty((len(order), 3, 3))
+    e2 = np.empty(len(order))
+    for a, i in enumerate(order):
+        d, u, (R, _t, _s, resid, _l) = data[i], used[i], final[i]
+        m = len(d.names)
+        L[a, :m] = d.laser
+        W[a, :m] = d.weights * u
+        Rs[a] = R
+        e2[a] = float(np.sum(resid[u] ** 2))
+    n_used = (W > 0).sum(axis=1)
+    p = prec.predict(L, W, Rs, e2, n_used, [data[i].sigma_stated for i in order],
+                     [data[i].reach for i in order])
+    out = {}
+    for a, i in enumerate(order):
+        d = data[i]
+        item = {"sigma": float(p["sigma"][a]), "angle_std": float(p["angle_std"][a]),
+                "reach": float(d.reach), "at_reach": float(p["at_reach"][a]),
+                "at_centroid": float(p["at_centroid"][a]),
+                "spread": [float(v) for v in p["spread"][a]]}
+        if not item["at_reach"] <= d.threshold:
+            item["reason"] = prec.reason(item["at_reach"], item["at_centroid"], d.reach,
+                                         d.threshold, item["sigma"], item["angle_std"],
+                                         item["spread"])
+        out[i] = item
+    return out
+
+
 def solve_many(data: Sequence[Dataset]) -> list:
     """The method on many datasets at once (``solve_points`` is a batch of one).
+
+    Floating-point warnings are silenced: a degenerate subset gives nan or
+    inf, which the status codes and ``isfinite`` checks judge; a numpy
+    warning on the terminal would tell the engineer nothing.
+    """
+    with np.errstate(all="ignore"):
+        return _solve_many(data)
+
+
+def _solve_many(data: Sequence[Dataset]) -> list:
+    """``solve_many`` without the floating-point guard.
 
     Each round fits every still-active dataset and all its leave-one-out
     subsets in one batched Horn call; the exclusion rule then runs per
@@ -277,6 +356,10 @@ def solve_many(data: Sequence[Dataset]) -> list:
         if bad is not None:
             results[i] = bad
             continue
+        bad = _unusable(d)
+        if bad is not None:
+            results[i] = bad
+            continue
         used[i] = np.array([m is None for m in marks])
         excluded_by[i] = marks
         active.append(i)
@@ -297,7 +380,9 @@ def solve_many(data: Sequence[Dataset]) -> list:
                 continue
             n_used = int(u.sum())
             if not first[i]:
-                if n_used < d.min_points or resid[u].max() <= d.threshold:
+                # Runs to its end even below min_points (SPEC point 6): a
+                # rejected set still lists every point the rule excludes.
+                if resid[u].max() <= d.threshold:
                     final[i] = fits[i]
                     continue
             first[i] = False
@@ -314,6 +399,7 @@ def solve_many(data: Sequence[Dataset]) -> list:
             still.append(i)
         active = still
 
+    gate = _precision(data, final, used)
     for i, (R, t, status, resid, loo) in final.items():
         d = data[i]
         u = used[i]
@@ -326,6 +412,10 @@ def solve_many(data: Sequence[Dataset]) -> list:
         accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=d.threshold,
                                       min_points=d.min_points, no_exclusion=d.no_exclusion,
                                       n_auto=excluded_by[i].count("auto"))
+        precision = gate[i]
+        if accepted and not precision["at_reach"] <= d.threshold:
+            accepted, reason = False, precision.pop("reason")
+        precision.pop("reason", None)
         points = [PointResult(name=d.names[k], residual=float(resid[k]),
                               loo_residual=float(loo_all[k]), used=bool(u[k]),
                               dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
@@ -337,19 +427,31 @@ def solve_many(data: Sequence[Dataset]) -> list:
                               mean=float(np.mean(r_used)), max=float(np.max(r_used)),
                               accepted=accepted, reason=reason, threshold=float(d.threshold),
                               min_points=int(d.min_points), source=d.path,
-                              no_exclusion=bool(d.no_exclusion))
+                              no_exclusion=bool(d.no_exclusion), precision=precision)
     return results
 
 
-def solve(measurement, tcp=(0.0, 0.0, 0.0), *, threshold: float = DEFAULT_THRESHOLD,
+#: SPEC point 8: a TCP is never silently 0,0,0.
+NO_TCP = ("no TCP given: say where the reflector sits on the flange with --tcp X,Y,Z (mm, in "
+          "flange coordinates; --tcp 0,0,0 says the points are flange positions), --tool "
+          "FILE:NAME (a tool in a controller file) or --tcp solve (estimate it with the frame)")
+
+
+def solve(measurement, tcp, *, threshold: float = DEFAULT_THRESHOLD,
           min_points: int = DEFAULT_MIN_POINTS, exclude: Iterable[str] = (),
-          no_exclusion: bool = False, tool: str | None = None) -> Solution:
-    """The method on a ``measurement.Measurement``; errors name its file."""
+          no_exclusion: bool = False, tool: str | None = None, reach: float = defaults.REACH,
+          sigma_laser: float = DEFAULT_SIGMA_LASER,
+          sigma_robot: float = DEFAULT_SIGMA_ROBOT) -> Solution:
+    """The method on a ``measurement.Measurement``; errors name its file.
+    ``tcp`` (x, y, z) has no default: None is the error SPEC asks for."""
+    if tcp is None:
+        raise UcsioError(NO_TCP, file=measurement.path)
     tcp = tuple(float(v) for v in tcp)
     try:
         sol = solve_points(measurement.names, measurement.laser, measurement.robot_points(tcp),
                            measurement.weights, threshold=threshold, min_points=min_points,
-                           exclude=exclude, no_exclusion=no_exclusion, lines=measurement.lines)
+                           exclude=exclude, no_exclusion=no_exclusion, lines=measurement.lines,
+                           reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot)
     except UcsioError as exc:
         if exc.file is None:
             raise UcsioError(exc.message, file=measurement.path) from None
@@ -371,7 +473,7 @@ def check_sigmas(sigma_laser: float, sigma_robot: float) -> None:
 
 def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples: int = 10000,
                 sigma_laser: float = DEFAULT_SIGMA_LASER, sigma_robot: float = DEFAULT_SIGMA_ROBOT,
-                seed: int = 0) -> dict[str, Any]:
+                seed: int = 0, sigma_residual: float = 0.0) -> dict[str, Any]:
     """Monte Carlo uncertainty of the fitted frame.
 
     laser (n, 3) are the used points in the UCS, robot_poses (n, 4, 4) the
@@ -389,6 +491,12 @@ def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples
     angle is a magnitude, so it is measured from 0, the nominal), and its
     ``ci95`` is [0, 95th percentile]: the orientation lies within that angle
     of the nominal one with 95 % probability.
+
+    ``sigma_residual``: the noise the fit's own residuals show per axis,
+    √(Σ|e_i|² / (3n − 6)) (SPEC point 7). Where it exceeds the stated
+    √(σ_laser² + σ_robot²), both are scaled up to it, so the numbers cannot
+    look small while the residuals say otherwise; ``sigma`` and
+    ``sigma_source`` ('stated' or 'residuals') say which was used.
     """
     laser = np.asarray(laser, dtype=float)
     robot_poses = np.asarray(robot_poses, dtype=float)
@@ -402,6 +510,15 @@ def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples
     if n_samples < 2:
         raise UcsioError("--uncertainty needs at least 2 samples")
     nominal = horn.absolute_orientation(laser, robot, w)
+    stated = math.hypot(sigma_laser, sigma_robot)
+    source = "stated"
+    if sigma_residual > stated:
+        source = "residuals"
+        if stated > 0:
+            f = sigma_residual / stated
+            sigma_laser, sigma_robot = sigma_laser * f, sigma_robot * f
+        else:
+            sigma_robot = sigma_residual
 
     rng = np.random.default_rng(seed)
     noisy_l = laser + rng.normal(0.0, sigma_laser, size=(n_samples, n, 3))
@@ -416,7 +533,8 @@ def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples
     ci95 = {axis: [float(lo[k]), float(hi[k])] for k, axis in enumerate("xyz")}
     ci95["angle"] = [0.0, float(np.percentile(angle, 95.0))]
     return {"samples": int(n_samples), "sigma_laser": float(sigma_laser),
-            "sigma_robot": float(sigma_robot), "seed": int(seed),
+            "sigma_robot": float(sigma_robot), "sigma": float(math.hypot(sigma_laser, sigma_robot)),
+            "sigma_source": source, "seed": int(seed),
             "degenerate_samples": int(np.count_nonzero(~fits.ok)),
             "std": std, "ci95": ci95,
             "analytical_std": analytical_std(laser, nominal, w, sigma_laser, sigma_robot)}
@@ -452,12 +570,19 @@ def analytical_std(laser, fit: horn.HornFit, weights, sigma_laser: float,
 def solution_uncertainty(measurement, sol: Solution, n_samples: int,
                          sigma_laser: float = DEFAULT_SIGMA_LASER,
                          sigma_robot: float = DEFAULT_SIGMA_ROBOT, seed: int = 0) -> dict[str, Any]:
-    """``uncertainty`` over the used points of a solution; stored on it."""
+    """``uncertainty`` over the used points of a solution; stored on it.
+    The noise is the larger of the stated one and the residuals' estimate."""
     used = np.array([p.used for p in sol.points])
     sol.uncertainty = uncertainty(measurement.laser[used], measurement.flange[used], sol.tcp,
                                   measurement.weights[used], n_samples, sigma_laser, sigma_robot,
-                                  seed)
+                                  seed, sigma_residual=residual_sigma(sol))
     return sol.uncertainty
+
+
+def residual_sigma(sol: Solution) -> float:
+    """Per-axis noise the used residuals show: √(Σ|e_i|² / (3n − 6))."""
+    r = [p.residual for p in sol.points if p.used]
+    return math.sqrt(sum(v * v for v in r) / max(3 * len(r) - 6, 1))
 
 
 # ---------------------------------------------------------------- SOLUTION.json

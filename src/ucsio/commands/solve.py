@@ -17,7 +17,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("measurement", metavar="MEAS.csv", help="measurement file (see SPEC: Measurement files)")
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z", default=None,
-                     help="reflector position in flange coordinates, mm (default 0,0,0)")
+                     help="reflector position in flange coordinates, mm (required unless "
+                          "--tool: 0,0,0 says the points are flange positions)")
     src.add_argument("--tool", metavar="FILE:NAME", default=None,
                      help="take the TCP from a robot-held tool in a controller file")
     p.add_argument("--threshold", type=float, default=defaults.THRESHOLD, metavar="MM",
@@ -28,6 +29,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--exclude", action="append", default=[], metavar="NAME",
                    help="drop this point by hand (repeatable)")
     p.add_argument("--no-exclusion", action="store_true", help="keep every point")
+    p.add_argument("--reach", type=float, default=defaults.REACH, metavar="MM",
+                   help="the determinacy gate judges the 95 %% displacement of a point this far "
+                        f"from the points' centroid against --threshold (default {defaults.REACH:g})")
     add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
                    help="write the result as JSON (atomically)")
@@ -42,6 +46,9 @@ def parse_tcp(text: str) -> tuple[float, float, float]:
         raise UcsioError(f"--tcp {text!r}: expected three numbers X,Y,Z (mm)") from None
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         raise UcsioError(f"--tcp {text!r}: expected three finite numbers X,Y,Z (mm)")
+    from ..defaults import MAX_MAGNITUDE
+    if any(abs(v) > MAX_MAGNITUDE for v in vals):
+        raise UcsioError(f"--tcp {text!r}: at most {MAX_MAGNITUDE:.0e} mm in magnitude")
     return vals  # type: ignore[return-value]
 
 
@@ -75,11 +82,16 @@ def run(args) -> int:
             raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
     if args.tool:
         tcp = tool_tcp(args.tool)
+    elif args.tcp is not None:
+        tcp = parse_tcp(args.tcp)
     else:
-        tcp = parse_tcp(args.tcp) if args.tcp else (0.0, 0.0, 0.0)
+        raise UcsioError(solver.NO_TCP)
+    solver.check_sigmas(args.sigma_laser, args.sigma_robot)
     meas = read_measurement(args.measurement)
     sol = solver.solve(meas, tcp, threshold=args.threshold, min_points=args.min_points,
-                       exclude=args.exclude, no_exclusion=args.no_exclusion, tool=args.tool)
+                       exclude=args.exclude, no_exclusion=args.no_exclusion, tool=args.tool,
+                       reach=args.reach, sigma_laser=args.sigma_laser,
+                       sigma_robot=args.sigma_robot)
     if args.uncertainty:
         solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
                                     args.sigma_robot, args.seed)
@@ -128,11 +140,18 @@ def render(sol) -> str:
     lines.append(f"n {sol.n_used} of {sol.n_points} used   rms {sol.rms:.3f}   mean {sol.mean:.3f}"
                  f"   max {sol.max:.3f} mm   (threshold {sol.threshold:g} mm,"
                  f" min points {sol.min_points})")
+    if sol.precision:
+        pr = sol.precision
+        lines.append(f"precision: a point {pr['reach']:g} mm from the centroid within "
+                     f"{pr['at_reach']:.3f} mm (95 %), orientation ±{pr['angle_std']:.4f} deg, "
+                     f"noise {pr['sigma']:.3f} mm per axis")
     if sol.uncertainty:
         u = sol.uncertainty
         s, ci, an = u["std"], u["ci95"], u["analytical_std"]
-        lines.append(f"uncertainty ({u['samples']} samples, sigma laser {u['sigma_laser']:g},"
-                     f" robot {u['sigma_robot']:g} mm):")
+        scaled = (" (scaled up to the residuals' noise)"
+                  if u.get("sigma_source") == "residuals" else "")
+        lines.append(f"uncertainty ({u['samples']} samples, sigma laser {u['sigma_laser']:.4g},"
+                     f" robot {u['sigma_robot']:.4g} mm{scaled}):")
         urows = [[k, "deg" if k == "angle" else "mm", f"{s[k]:.4f}",
                   f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
                  for k in ("x", "y", "z", "angle")]
