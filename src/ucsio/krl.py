@@ -47,6 +47,7 @@ from .controller import ControllerFile
 from .document import Document, Span
 from .errors import UcsioError
 from .frames import Frame, Number, Pose
+from .values import Value
 
 VENDOR = "kuka"
 START = ("file",)
@@ -836,3 +837,93 @@ def _load(v: _Val) -> dict:
                                     and sv[c.upper()][1].kind == "number" else None)
                                 for c in comps}
     return out
+
+
+# -- taught positions (a measurement program's .dat) ------------------------------
+POSITION_TYPES = ("E6POS", "POS", "FRAME")
+
+
+class Position(Value):
+    """A position declared in a data list (``DECL E6POS XP1={...}``) with the
+    motion data of its inline form (``DECL FDAT FP1={TOOL_NO 1,BASE_NO 2,
+    IPO_FRAME #BASE}``): the pose of ``$TOOL`` in ``$BASE``. ``fdat`` is None
+    where the file declares no FDAT for it; ``tool_no``/``base_no`` are
+    None where the FDAT leaves them out."""
+
+    __slots__ = ("name", "type", "pose", "line", "col", "fdat", "tool_no", "base_no",
+                 "ipo_frame", "problem")
+
+    def __init__(self, name, type, pose, line, col, fdat=None, tool_no=None, base_no=None,
+                 ipo_frame=None):
+        self.name, self.type, self.pose, self.line, self.col = name, type, pose, line, col
+        self.fdat, self.tool_no, self.base_no, self.ipo_frame = fdat, tool_no, base_no, ipo_frame
+        self.problem = None      # UcsioError: why ``pose`` is None (raised where it is used)
+
+    @property
+    def point(self) -> str:
+        """The point's name as the inline form shows it: XP1 -> P1."""
+        return self.name[1:] if self.name[:1] in "Xx" and len(self.name) > 1 else self.name
+
+
+def positions(doc: Document) -> list[Position]:
+    """Every E6POS, POS and FRAME declared with a value, in file order, each
+    with its FDAT (``X<name>`` pairs with ``F<name>``, the inline forms'
+    naming). The whole file goes through the grammar (``check``'s path): a
+    measurement program is short, and a syntax error anywhere must not go
+    unseen. A position whose X, Y, Z, A, B or C is missing or not a number
+    has no pose and a ``problem`` (file:line:col) for whoever needs it."""
+    tree = _parse(doc, doc.text, "file")
+    found: list[tuple[str, str, Any, int]] = []
+    fdats: dict[str, tuple[dict, int]] = {}
+    for s in _statements(tree, doc):
+        if s.kind != "decl" or s.type not in POSITION_TYPES + ("FDAT",):
+            continue
+        for name, dims, val in s.vars:
+            if dims is not None or val is None:
+                continue
+            v = _value(val)
+            if s.type == "FDAT":
+                if v.kind == "struct":
+                    fdats[name.value.upper()] = (v.value, v.start)
+                continue
+            found.append((name.value, s.type, v, name.start_pos))
+    out = []
+    for name, ptype, v, pos in found:
+        line, col = doc.line_col(pos)
+        pose, problem = _position_pose(name, ptype, v)
+        p = Position(name, ptype, pose, line, col)
+        if problem is not None:
+            p.problem = doc.error(*problem)
+        key = name.upper()
+        fd = fdats.get("F" + key[1:]) if key.startswith("X") else None
+        if fd is not None:
+            fields, _ = fd
+            p.fdat = "F" + name[1:]
+
+            def field(k, kind):
+                got = fields.get(k)
+                return got[1].value if got is not None and got[1].kind == kind else None
+
+            tool, base = field("TOOL_NO", "number"), field("BASE_NO", "number")
+            p.tool_no = None if tool is None else int(tool)
+            p.base_no = None if base is None else int(base)
+            p.ipo_frame = field("IPO_FRAME", "enum")
+        out.append(p)
+    return out
+
+
+def _position_pose(name: str, ptype: str, v: _Val):
+    """(Pose, None), or (None, (message, offset)) where the value is not a
+    complete X, Y, Z, A, B, C."""
+    if v.kind != "struct":
+        return None, (f"{name}: a {ptype} value is written {{X ..,Y ..,Z ..,A ..,B ..,C ..}}",
+                      v.start)
+    comps = {}
+    for c in COMPONENTS:
+        got = v.value.get(c.upper())
+        if got is None:
+            return None, (f"{name}: component {c.upper()} missing", v.start)
+        if got[1].kind != "number":
+            return None, (f"{name}: component {c.upper()} is not a number", got[1].start)
+        comps[c] = got[1].value
+    return Pose.from_abc(*(comps[c] for c in COMPONENTS)), None

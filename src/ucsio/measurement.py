@@ -65,6 +65,7 @@ SEPARATORS = (",", ";", "\t", "|")
 #: ABB quaternions are read back to 6 decimals; further off than this from
 #: unit norm is a typo or a wrong column, not rounding.
 QUAT_NORM_TOLERANCE = 1e-3
+SIDES = ("laser", "robot")
 
 
 @dataclass
@@ -75,8 +76,8 @@ class Measurement:
     path: str
     names: list[str]
     lines: list[int]
-    laser: np.ndarray        # (n, 3) mm, in the UCS
-    flange: np.ndarray       # (n, 4, 4) flange pose in robot world
+    laser: np.ndarray        # (n, 3) mm, in the UCS (None: a robot-side file)
+    flange: np.ndarray       # (n, 4, 4) flange pose in robot world (None: a laser-side file)
     weights: np.ndarray      # (n,)
     form: str                # 'kuka' | 'abb' | 'fanuc'
     orientation: np.ndarray  # (n, 3) or (n, 4) as written
@@ -189,14 +190,20 @@ def _decode(raw: bytes, path: str) -> str:
         return raw.decode("cp1252", errors="replace")
 
 
-def read_measurement(path: str | os.PathLike) -> Measurement:
-    """Read a measurement CSV; UcsioError (exit 2) on anything wrong."""
+def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
+                     what: str = "measurement file") -> Measurement:
+    """Read a measurement CSV; UcsioError (exit 2) on anything wrong.
+    ``sides``: the columns required, ``("laser",)`` or ``("robot",)`` for one
+    side of a measurement (``solve --laser/--robot``); the other side's
+    columns are then not needed (and its array is None)."""
     path = os.fspath(path)
-    raw = read_bytes(path, "measurement file")
-    return parse_measurement(_decode(raw, path), path)
+    raw = read_bytes(path, what)
+    return parse_measurement(_decode(raw, path), path, sides)
 
 
-def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
+def parse_measurement(text: str, path: str = "<measurement>",
+                      sides: tuple[str, ...] = SIDES) -> Measurement:
+    laser_side, robot_side = "laser" in sides, "robot" in sides
     text = text.lstrip("\ufeff")
     header = None
     rows: list[tuple[int, list[tuple[str, int]]]] = []
@@ -223,7 +230,8 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
             continue
         rows.append((lineno, _split(line, sep)))
     if header is None:
-        raise UcsioError("no header row (expected laser_x, laser_y, ... columns)", file=path)
+        first = "laser_x, laser_y" if laser_side else "robot_x, robot_y"
+        raise UcsioError(f"no header row (expected {first}, ... columns)", file=path)
     decimal_comma = sep != ","
 
     header_line, header_fields = header
@@ -241,15 +249,18 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
                                  f"{close[0]!r}?", file=path, line=header_line, col=col)
 
     present = [form for form, cols in FORMS.items() if any(c in columns for c in cols)]
+    if not robot_side:
+        present = present[:1]       # the laser side of a merged file: orientation unused
     if len(present) > 1:
         raise UcsioError("flange orientation given in two forms: "
                          + " and ".join(FORM_LABEL[f] for f in present)
                          + "; keep exactly one", file=path, line=header_line)
-    if not present:
+    if not present and robot_side:
         raise UcsioError("no flange orientation columns: need robot_a/b/c (KUKA), "
                          "robot_q1..q4 (ABB) or robot_w/p/r (Fanuc)", file=path, line=header_line)
-    form = present[0]
-    needed = POSITION + FORMS[form]
+    form = present[0] if present else "none"
+    needed = ((POSITION[:3] if laser_side else ()) + (POSITION[3:] if robot_side else ())
+              + (FORMS[form] if robot_side else ()))
     missing = [c for c in needed if c not in columns]
     if missing:
         raise UcsioError(f"missing column{'s' if len(missing) > 1 else ''} "
@@ -309,9 +320,13 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
         names.append(name)
         lines.append(lineno)
 
-    laser = values[:, 0:3]
-    position = values[:, 3:6]
-    orientation = values[:, 6:]
+    if not robot_side:
+        return Measurement(path=path, names=names, lines=lines, laser=values[:, 0:3].copy(),
+                           flange=None, weights=weights, form=form, orientation=None)
+    laser = values[:, 0:3] if laser_side else None
+    k = 3 if laser_side else 0
+    position = values[:, k:k + 3]
+    orientation = values[:, k + 3:]
     if form == "abb":
         norms = np.linalg.norm(orientation, axis=1)
         bad = np.flatnonzero(np.abs(norms - 1.0) > QUAT_NORM_TOLERANCE)
@@ -320,5 +335,6 @@ def parse_measurement(text: str, path: str = "<measurement>") -> Measurement:
             raise UcsioError(f"robot_q1..q4 is not a unit quaternion (norm {norms[i]:.6g})",
                              file=path, line=lines[i], col=rows[i][1][columns["robot_q1"]][1])
     flange = flange_matrices(form, orientation, position)
-    return Measurement(path=path, names=names, lines=lines, laser=laser.copy(), flange=flange,
+    return Measurement(path=path, names=names, lines=lines,
+                       laser=None if laser is None else laser.copy(), flange=flange,
                        weights=weights, form=form, orientation=orientation.copy())

@@ -629,3 +629,42 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf.extra["declarations"] = decls
     frames_from(cf, decls)
     return cf
+
+
+# -- taught positions (robtargets) ---------------------------------------------------
+class Target(Value):
+    """A module-level ``robtarget``: the pose of the TCP of the tool it is
+    taught with, in the object frame of its work object (both named where
+    the target is used, not in the data). ``pose`` is None, with
+    ``problem``, where the value is not a literal [[x,y,z],[q1..q4],...]."""
+
+    __slots__ = ("name", "pose", "line", "col", "module", "problem")
+
+    def __init__(self, name, pose, line, col, module, problem=None):
+        self.name, self.pose, self.line, self.col = name, pose, line, col
+        self.module, self.problem = module, problem
+
+
+def robtargets(cf: ControllerFile) -> list[Target]:
+    """The robtargets of a module parsed with ``full=True`` (the fast path
+    leaves them out), in file order; arrays are skipped."""
+    doc = cf.document
+    out = []
+    for d in cf.extra.get("declarations", ()):
+        if d.type.casefold() != "robtarget" or d.dims:
+            continue
+        line, col = doc.line_col(d.start)
+        v = d.value
+        parsed = _pose(v[:2]) if isinstance(v, list) and len(v) == 4 else None
+        if parsed is None:
+            problem = doc.error(f"{d.name}: not a literal robtarget [[x, y, z], [q1, q2, q3, q4], "
+                                "[cf1, cf4, cf6, cfx], [eax_a, ...]]", _start_of(v, d.start))
+            out.append(Target(d.name, None, line, col, d.module, problem))
+            continue
+        _, (t, q) = parsed
+        if sum(c * c for c in q) == 0.0:
+            out.append(Target(d.name, None, line, col, d.module,
+                              doc.error(f"{d.name}: orientation is all zeros", d.start)))
+            continue
+        out.append(Target(d.name, Pose.from_quat(*t, q), line, col, d.module))
+    return out

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 
 from .. import defaults
 from ..errors import UcsioError
@@ -14,7 +15,9 @@ from ..files import atomic_write_text
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("measurement", metavar="MEAS.csv", help="measurement file (see SPEC: Measurement files)")
+    p.add_argument("measurement", metavar="MEAS.csv", nargs="?", default=None,
+                   help="measurement file (see SPEC: Measurement files); or --laser and --robot")
+    add_source_options(p)
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z", default=None,
                      help="reflector position in flange coordinates, mm (required unless "
@@ -35,6 +38,52 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
                    help="write the result as JSON (atomically)")
+
+
+def add_source_options(p: argparse.ArgumentParser) -> None:
+    """--laser/--robot and what the robot side needs: the two sides of a
+    measurement from the files they live in (ucsio.readers)."""
+    g = p.add_argument_group("measurements where they live (instead of MEAS.csv)")
+    g.add_argument("--laser", metavar="FILE", default=None,
+                   help="laser tracker points: SPEC CSV, SpatialAnalyzer ASCII export, or a "
+                        "name x y z table")
+    g.add_argument("--laser-units", choices=("mm", "m", "in"), default="mm",
+                   help="units of the laser file's coordinates (default mm)")
+    g.add_argument("--robot", metavar="FILE", default=None,
+                   help="flange poses: SPEC CSV (robot_* columns), a KUKA program .dat "
+                        "(E6POS/POS/FRAME with FDAT) or an ABB module (robtargets)")
+    g.add_argument("--config", metavar="FILE", default=None,
+                   help="KUKA $config.dat for the positions' TOOL_NO/BASE_NO; ABB: a module "
+                        "declaring --robot-tool/--robot-wobj")
+    g.add_argument("--robot-tool", metavar="NAME", default="tool0",
+                   help="ABB: the tool the robtargets were taught with (default tool0)")
+    g.add_argument("--robot-wobj", metavar="NAME", default="wobj0",
+                   help="ABB: the work object the robtargets are in (default wobj0)")
+    g.add_argument("--map", metavar="FILE", default=None,
+                   help="CSV of laser,robot name pairs for points whose names differ")
+
+
+def read_inputs(args):
+    """(Measurement, warnings) from MEAS.csv or from --laser and --robot."""
+    both = args.laser is not None and args.robot is not None
+    if args.measurement is not None and (args.laser is not None or args.robot is not None):
+        raise UcsioError("give MEAS.csv or --laser and --robot, not both")
+    if args.measurement is None:
+        if not both:
+            missing = "--robot" if args.laser is not None else (
+                "--laser" if args.robot is not None else "MEAS.csv (or --laser and --robot)")
+            raise UcsioError(f"solve needs {missing}")
+        from ..readers import laser, pairing, robot
+        lp = laser.read_laser(args.laser, args.laser_units)
+        rp = robot.read_robot(args.robot, config=args.config, tool=args.robot_tool,
+                              wobj=args.robot_wobj)
+        mapping = pairing.read_map(args.map) if args.map else ()
+        return pairing.pair(lp, rp, mapping, args.map)
+    for opt, given in (("--map", args.map), ("--config", args.config)):
+        if given is not None:
+            raise UcsioError(f"{opt} goes with --laser and --robot")
+    from ..measurement import read_measurement
+    return read_measurement(args.measurement), []
 
 
 def parse_tcp(text: str) -> tuple[float, float, float]:
@@ -68,7 +117,6 @@ def run(args) -> int:
     import json
 
     from .. import solve as solver
-    from ..measurement import read_measurement
     from ..output import _clean, emit_json
 
     if args.uncertainty and args.uncertainty < 2:
@@ -87,7 +135,7 @@ def run(args) -> int:
     else:
         raise UcsioError(solver.NO_TCP)
     solver.check_sigmas(args.sigma_laser, args.sigma_robot)
-    meas = read_measurement(args.measurement)
+    meas, warnings = read_inputs(args)
     sol = solver.solve(meas, tcp, threshold=args.threshold, min_points=args.min_points,
                        exclude=args.exclude, no_exclusion=args.no_exclusion, tool=args.tool,
                        reach=args.reach, sigma_laser=args.sigma_laser,
@@ -96,6 +144,9 @@ def run(args) -> int:
         solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
                                     args.sigma_robot, args.seed)
     result = sol.as_dict()
+    result["warnings"] = warnings + result["warnings"]
+    for w in warnings:
+        print(f"ucsio: warning: {w}", file=sys.stderr)
 
     if args.output is not None:
         buf = io.StringIO()

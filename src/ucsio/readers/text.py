@@ -1,0 +1,85 @@
+"""Plain-text tables as tracker software exports them: decoding, comment
+lines, separators, decimal commas, numbers with the column they stand in.
+
+Every field keeps its 1-based column, so a bad value is reported as
+``file:line:col``."""
+from __future__ import annotations
+
+import math
+import re
+
+from ..errors import UcsioError
+
+#: candidate separators in the order they are tried; None is "runs of
+#: spaces or tabs" (fixed-width or whitespace-separated exports)
+SEPARATORS = (";", "\t", ",", None)
+_WS_FIELD = re.compile(r"\S+")
+
+
+def decode(raw: bytes) -> str:
+    """UTF-8 (BOM or not), else Windows-1252: what tracker PCs write."""
+    if raw.startswith(b"\xef\xbb\xbf"):
+        raw = raw[3:]
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("cp1252", errors="replace")
+
+
+def content_lines(text: str) -> list[tuple[int, str]]:
+    """(line number, text) of the lines that hold data or a header: blank
+    lines and ``#`` or ``//`` comment lines are left out."""
+    out = []
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        s = line.strip()
+        if s and not s.startswith(("#", "//")):
+            out.append((lineno, line))
+    return out
+
+
+def split(line: str, sep: str | None) -> list[tuple[str, int]]:
+    """Fields of a line with their 1-based start column; surrounding spaces
+    and double quotes are taken off a field."""
+    if sep is None:
+        return [(_unquote(m.group()), m.start() + 1) for m in _WS_FIELD.finditer(line)]
+    fields = []
+    start = 0
+    for part in line.split(sep):
+        lead = len(part) - len(part.lstrip())
+        fields.append((_unquote(part.strip()), start + lead + 1))
+        start += len(part) + len(sep)
+    return fields
+
+
+def _unquote(s: str) -> str:
+    return s[1:-1] if len(s) >= 2 and s[0] == s[-1] == '"' else s
+
+
+def number(text: str, sep: str | None) -> float | None:
+    """The value of a field, or None if it is not a finite number. A decimal
+    comma is read where the separator is not a comma."""
+    s = text.strip()
+    if sep != "," and "," in s and "." not in s:
+        s = s.replace(",", ".")
+    try:
+        v = float(s)
+    except ValueError:
+        return None
+    return v if math.isfinite(v) else None
+
+
+def coordinates(fields, cols, sep, path: str, lineno: int, labels=("x", "y", "z")):
+    """The numbers in columns ``cols`` of one row; a bad one is an error
+    naming its line and column."""
+    out = []
+    for c, label in zip(cols, labels):
+        if c >= len(fields):
+            raise UcsioError(f"{label}: missing (the row has {len(fields)} fields)",
+                             file=path, line=lineno)
+        text, col = fields[c]
+        v = number(text, sep)
+        if v is None:
+            what = "empty" if not text.strip() else f"not a finite number: {text!r}"
+            raise UcsioError(f"{label} {what}", file=path, line=lineno, col=col)
+        out.append(v)
+    return out
