@@ -213,10 +213,17 @@ def test_program_dat_files():
     cf = both(Document.read(corpus("Aleynikovich__Zinkerreka__KRC__R1__Program__Work__C1_pickConveyorBP.dat")))
     assert len(cf.frames) == 5 and all(f.type == "FRAME" for f in cf.frames)
     cf = both(Document.read(corpus("KamWisa__BPF2PLTZPK2__varglobal.dat")))
-    # E6POS/POS points (MasterSackPos[6,16]) are not frames; uninitialised FRAMEs are not listed
-    assert {f.name for f in cf.frames} == {"Homing", "EscRetBlt", "PikUpRgh", "PikUpLft"}
+    # E6POS/POS points (MasterSackPos[6,16]) are not frames; FRAMEs declared without a
+    # value are listed without numbers (like ABB's PERS without a value), with an info
+    valued = {f.name for f in cf.frames if f.pose is not None}
+    assert valued == {"Homing", "EscRetBlt", "PikUpRgh", "PikUpLft"}
     assert cf.frame("homing").info == {"global": True}
     assert "PikPos" in cf.extra["uninitialised"]
+    pik = cf.frame("pikpos")
+    assert pik.pose is None and pik.numbers == {} and pik.line == 167
+    assert pik.info == {"global": True, "value": None}
+    assert {f.name for f in cf.frames if f.pose is None} == set(cf.extra["uninitialised"])
+    assert {(l.code, l.severity) for l in cf.lints} == {("no-value", "info")}
     for name in ("HugoDanielson__ChinaMilling__KRC__R1__Program__KukaMiling__Dat__xPoints.dat",
                  "paulovictor237__KUKA-Paletizador__Extras__Bkp__TMatriz.dat",
                  "roboception__rc_generic_robot_interface_robot__KUKA-EKI6__GRI_HEC_EXAMPLE.dat",
@@ -228,12 +235,17 @@ def test_program_dat_files():
 def test_fragment_and_stub():
     cf = both(Document.read(corpus("paulovictor237__KUKA-Paletizador__$config.dat")))
     assert cf.extra["defdat"] is None
-    (nf,) = cf.frames
+    nf, *declared = cf.frames
     assert nf.name == "NULLFRAME" and nf.info == {"const": True} and nf.numbers["x"].text == "0"
+    # DECL GLOBAL FRAME OffsetEsteira1 ...: declared without a value, listed without numbers
+    assert [f.name for f in declared] == cf.extra["uninitialised"]
+    assert declared[0].name == "OffsetEsteira1" and declared[0].line == 72
+    assert all(f.pose is None for f in declared)
     stub = corpus("b-dosymzhan__KUKA-powerbank-assembly-safety-AI__$config.dat")
     assert stub.stat().st_size == 281
     cf = both(Document.read(stub))
-    assert cf.frames == [] and cf.extra["uninitialised"] == ["COM_FRAME"]
+    assert [(f.name, f.pose, f.line) for f in cf.frames] == [("COM_FRAME", None, 14)]
+    assert cf.extra["uninitialised"] == ["COM_FRAME"]
 
 
 @needs_corpus
@@ -280,7 +292,9 @@ def test_variants_fixture():
     cf = both(Document.read(FIXTURES / "variants.dat"))
     f = {fr.name: fr for fr in cf.frames}
     assert list(f) == ["compact", "spaced", "noDeclFrame", "reordered", "mixedCase", "typed",
-                       "expo", "two1", "two2", "shifts[1]", "shifts[2]", "shifts[3]", "grid[1,2]"]
+                       "expo", "two1", "two2", "noValue", "shifts[1]", "shifts[2]", "shifts[3]",
+                       "grid[1,2]"]
+    assert f["noValue"].pose is None and f["noValue"].line == 55
     assert f["compact"].pose.t == (10.5, -20.25, 300.0) and f["compact"].pose.abc == (90, -45, 180)
     assert f["spaced"].pose.abc == (10.0, 20.0, 30.0) and f["spaced"].info == {"global": True}
     assert f["reordered"].pose.t == (10.0, 20.0, 30.0) and f["reordered"].pose.abc == (1, 2, 3)
@@ -293,7 +307,8 @@ def test_variants_fixture():
     assert cf.extra["arrays"] == {"shifts": [3], "grid": [2, 2]}
     assert cf.extra["uninitialised"] == ["noValue"]
     assert cf.extra["defdat"] == {"name": "VARIANTS", "public": True}
-    assert "commentedOut" not in f and cf.lints == []
+    assert "commentedOut" not in f
+    assert [(l.code, l.line, l.severity) for l in cf.lints] == [("no-value", 55, "info")]
 
 
 # one test per syntax variant of FORMATS.md 2.9 (small inline data lists)

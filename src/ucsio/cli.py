@@ -121,11 +121,7 @@ def report_error(exc: UcsioError, want_json: bool) -> None:
     print(f"{prefix}{exc}", file=sys.stderr)
     if want_json:
         from .output import emit_json
-        emit_json({"error": error_dict(exc)})
-
-
-def error_dict(exc: UcsioError) -> dict:
-    return {"file": exc.file, "line": exc.line, "col": exc.col, "message": exc.message}
+        emit_json({"error": exc.as_dict()})
 
 
 def entry() -> None:

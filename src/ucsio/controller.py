@@ -17,6 +17,40 @@ ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
 
 
+# Every code check can report, with what it means (README: "Lint codes").
+# `check --ignore CODE` accepts exactly these.
+LINT_CODES = {
+    # ABB RAPID
+    "unnormalized-quaternion": "an orient with |sum q^2 - 1| above 1e-4: wrong positions on the controller",
+    "quaternion-rounding": "info: |sum q^2 - 1| between 1e-5 and 1e-4, as RobotWare writes itself",
+    "zero-quaternion": "an orient that is all zeros",
+    "tool-mass": "a robot-held tool whose load mass is not above 0",
+    "moving-uframe": "a work object with ufprog FALSE: the controller overwrites its uframe",
+    "no-value": "info: declared without a value (given elsewhere); listed, not patchable",
+    "incomplete": "an editor placeholder (<EXP> ...) in frame data; not patchable",
+    "not-literal": "info: frame data computed from other names; listed without numbers",
+    "bad-shape": "frame data with the wrong number of components",
+    "array-size": "an array value whose element count differs from its declared size",
+    "long-name": "an identifier longer than RAPID's 32 characters",
+    "duplicate": "a name declared twice in one module",
+    # KUKA KRL
+    "bad-label": "a TOOL_NAME/BASE_NAME entry that is not a string",
+    "bad-type": "a TOOL_TYPE/BASE_TYPE entry that is not an #ENUM value",
+    "unknown-type": "a TOOL_TYPE/BASE_TYPE value ucsio does not know",
+    "index-out-of-range": "a FRAME array element outside its declared size",
+    "duplicate-frame": "a frame initialised twice",
+    "duplicate-label": "two tools or two bases with the same label",
+    "not-a-frame": "a FRAME variable whose value is not {X ..,Y ..,Z ..,A ..,B ..,C ..}",
+    "duplicate-component": "a FRAME component given twice",
+    "unknown-component": "a FRAME component other than X Y Z A B C",
+    "not-a-number": "a FRAME component that is not a number",
+    "missing-component": "a FRAME value missing one of X Y Z A B C",
+    "label-too-long": "a TOOL_NAME/BASE_NAME label longer than the controller allows",
+    "label-quote": "a label containing a double quote",
+    "base-not-world": "a base on an external kinematic: not relative to world",
+}
+
+
 class Lint(Value):
     """A finding of ``check``. A ``warning`` fails the check (exit 1); an
     ``info`` is legal code worth knowing (a PERS whose value another module

@@ -19,6 +19,10 @@ class UcsioError(Exception):
         self.line = line
         self.col = col
 
+    def as_dict(self) -> dict:
+        """SPEC's JSON error object."""
+        return {"file": self.file, "line": self.line, "col": self.col, "message": self.message}
+
     def __str__(self) -> str:
         where = ""
         if self.file is not None:

@@ -534,6 +534,11 @@ def _defdat(tree):
 def parse(doc: Document, full: bool = False) -> ControllerFile:
     """Parse a KRL data list into frames, lints and tables."""
     text = doc.text
+    if "\r" in text and "\n" not in text:
+        # bare-CR line endings (some KRC tools save them): lines end at CR, as
+        # Document.line_starts counts them. The grammar ends lines at LF, so it
+        # reads a copy with LF for CR; same length, so every offset holds.
+        text = text.replace("\r", "\n")
     if not text.strip():
         # a fragment may hold any statements, but none at all is a failed transfer
         raise doc.error("empty file: no KRL data (DEFDAT ... ENDDAT or declarations)", 0)
@@ -581,7 +586,7 @@ class _Interpreter:
                     else:
                         frame_scalars[key] = name.value
                         if val is None:
-                            uninitialised.append(name.value)
+                            uninitialised.append((s, name))
                         else:
                             frame_decls.append((s, name, val))
             elif s.type == "INT" and s.vars and s.vars[0][0].value.upper().startswith("MAX_"):
@@ -650,14 +655,27 @@ class _Interpreter:
                                         if c.upper() in r and r[c.upper()][1].kind == "number"}
                     machines[one] = mach
 
-        # frames in document order
+        # frames in document order; a FRAME declared without a value and never
+        # assigned is listed too (as ABB's PERS without a value is), without numbers
+        assigned = {key for s, key in elements if key in frame_scalars and not s.index}
         items = [(s.start, s, name, val) for s, name, val in frame_decls]
         items += [(s.start, s, None, None) for s, _ in elements]
+        items += [(s.start, s, name, None) for s, name in uninitialised
+                  if name.value.upper() not in assigned]
         items.sort(key=lambda it: it[0])
         frames = self.cf.frames
         seen: dict[str, Frame] = {}
         for _, s, name_tok, val in items:
-            if name_tok is not None:                          # FRAME x={...}
+            if name_tok is not None and val is None:          # DECL FRAME x
+                fr = Frame(name=name_tok.value, vendor=VENDOR, type="FRAME", pose=None,
+                           file=self.doc.path, line=s.line, document=self.doc)
+                fr.reference = "unknown"
+                fr.info.update(_mods_info(s.mods))
+                fr.info["value"] = None
+                self.lint(name_tok.start_pos, "no-value",
+                          f"{fr.name}: declared without a value (legal: the program assigns "
+                          "it); listed, not patchable", severity="info")
+            elif name_tok is not None:                        # FRAME x={...}
                 fr = self.frame(name_tok.value, "FRAME", s, val)
                 fr.reference = "unknown"
                 fr.info.update(_mods_info(s.mods))
@@ -693,7 +711,7 @@ class _Interpreter:
         extra = self.cf.extra
         extra["tables"] = dict(sorted(maxima.items()))
         extra["arrays"] = {sp: dims for sp, dims in frame_arrays.values()}
-        extra["uninitialised"] = uninitialised
+        extra["uninitialised"] = [name.value for _, name in uninitialised]
         extra["loads"] = loads
 
     def frame(self, name: str, ftype: str, s, val_node) -> Frame:

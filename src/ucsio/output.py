@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from typing import Any, Iterable, Sequence
 
@@ -52,3 +53,50 @@ def table(headers: Sequence[str], rows: Iterable[Sequence[Any]], right: set[int]
         return "  ".join(out).rstrip()
 
     return "\n".join([line(headers), line(["-" * w for w in widths])] + [line(r) for r in rows])
+
+
+# ANSI styles for what a reviewer must not miss: PASS/FAIL and diff lines.
+_STYLES = {"pass": "32", "fail": "1;31", "add": "32", "remove": "31", "change": "33",
+           "info": "36", "head": "1", "hunk": "36"}
+
+
+def colour_on(stream=None) -> bool:
+    """Colour only on a terminal, and never when NO_COLOR is set (no-color.org)
+    or the terminal is dumb: a pipe or a file gets plain text."""
+    stream = stream or sys.stdout
+    if os.environ.get("NO_COLOR") or os.environ.get("TERM") == "dumb":
+        return False
+    isatty = getattr(stream, "isatty", None)
+    try:
+        return bool(isatty and isatty())
+    except ValueError:          # a closed stream
+        return False
+
+
+def paint(text: str, style: str, stream=None) -> str:
+    """``text`` in ``style`` when ``stream`` (default stdout) shows colour."""
+    if not text or not colour_on(stream):
+        return text
+    return f"\033[{_STYLES[style]}m{text}\033[0m"
+
+
+def paint_diff(text: str, stream=None) -> str:
+    """A unified diff or ucsio's frame review, coloured line by line like git's."""
+    if not colour_on(stream):
+        return text
+    out = []
+    for line in text.split("\n"):
+        s = line.lstrip()
+        if line.startswith(("+++", "---")):
+            out.append(paint(line, "head", stream))
+        elif line.startswith("@@"):
+            out.append(paint(line, "hunk", stream))
+        elif s.startswith("+"):
+            out.append(paint(line, "add", stream))
+        elif s.startswith("-"):
+            out.append(paint(line, "remove", stream))
+        elif s.startswith("~"):
+            out.append(paint(line, "change", stream))
+        else:
+            out.append(line)
+    return "\n".join(out)

@@ -27,7 +27,11 @@ from .values import Value
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
-NORM_TOLERANCE = 1e-5   # |sum q^2 - 1| above this is "not normalised" (NOrient)
+# |sum q^2 - 1|: RobotWare's own backups hold up to 1.9e-5 (FORMATS 1.6), so a
+# warning there would fail the controller's own files. Above NORM_WARN (the
+# "1.0 +- 0.0001" reading) it is a warning; from NORM_INFO up, an info.
+NORM_INFO = 1e-5
+NORM_WARN = 1e-4
 NUM_MAX = 3.4028235e38  # RAPID num is IEEE single precision
 
 # -- the outline scanner -------------------------------------------------------
@@ -475,9 +479,15 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
         if norm2 == 0.0:
             cf.lint(numbers["q1"].span.start, "zero-quaternion", f"{name}: orientation is all zeros")
         else:
-            if abs(norm2 - 1.0) > NORM_TOLERANCE:
+            err = abs(norm2 - 1.0)
+            if err > NORM_WARN:
                 cf.lint(numbers["q1"].span.start, "unnormalized-quaternion",
-                        f"{name}: quaternion is not normalised (|sum q^2 - 1| = {abs(norm2 - 1):.2e})")
+                        f"{name}: quaternion is not normalised (|sum q^2 - 1| = {err:.2e}, "
+                        f"above {NORM_WARN:g})")
+            elif err > NORM_INFO:
+                cf.lint(numbers["q1"].span.start, "quaternion-rounding",
+                        f"{name}: |sum q^2 - 1| = {err:.2e}: rounded as RobotWare writes it "
+                        f"(warned above {NORM_WARN:g})", severity="info")
             pose = Pose.from_quat(*t, q)
     line = doc.line_of(at)
     return Frame(name=name, vendor="abb", type=type_, pose=pose, file=doc.path, line=line,

@@ -13,3 +13,25 @@ def add_uncertainty_options(p, what: str) -> None:
     p.add_argument("--sigma-robot", type=float, default=defaults.SIGMA_ROBOT, metavar="MM",
                    help=f"robot noise per axis, mm, for the determinacy gate and --uncertainty (default {defaults.SIGMA_ROBOT})")
     p.add_argument("--seed", type=int, default=0, help="random seed for --uncertainty (default 0)")
+
+
+def load_inputs(paths: list[str], full: bool = False):
+    """Controller files, folders and archives -> ((source, parsed file) pairs,
+    errors). One plain file that cannot be read is raised as it is (SPEC's
+    single error); with many, each failure is collected and the rest read."""
+    from ..backup import load_all, single_input
+    parsed, errors = load_all(paths, full=full)
+    if errors and single_input(paths):
+        raise errors[0]
+    return parsed, errors
+
+
+def report_failures(errors, what: str = "file") -> None:
+    """Each unreadable file as one line on stderr (file:line:col: message)."""
+    import sys
+    for exc in errors:
+        print(f"ucsio: {exc}", file=sys.stderr)
+    if errors:
+        n = len(errors)
+        print(f"ucsio: {n} {what}{'s' if n != 1 else ''} could not be read (exit 2)",
+              file=sys.stderr)

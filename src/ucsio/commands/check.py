@@ -1,15 +1,24 @@
 """Parse every byte with the grammar, prove the byte-exact round trip, and lint
 (unnormalised quaternions, robot-held tools without mass, moving user frames,
-KUKA labels and references). Exit 1 when there is any warning; an "info"
-(legal code worth knowing, such as a PERS whose value another module gives)
-does not fail the check."""
+KUKA labels and references). Every finding names its code; --ignore CODE,...
+silences codes (the README lists them). Exit 1 when there is any warning or a
+failed round trip; an "info" (legal code worth knowing, such as a PERS whose
+value another module gives) does not fail the check.
+
+FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
+.prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
+that cannot be read (an encrypted module, a syntax error) is listed with its
+error and every other file is still checked; exit 2 at the end."""
 from __future__ import annotations
 
 from ..output import emit_json
 
 
 def add_arguments(p) -> None:
-    p.add_argument("files", nargs="+", metavar="FILE")
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="RAPID module, KRL .dat file, backup folder or .zip archive")
+    p.add_argument("--ignore", action="append", default=[], metavar="CODE,...",
+                   help="silence these lint codes (comma-separated, repeatable)")
 
 
 def round_trip(cf) -> bool:
@@ -34,27 +43,63 @@ def round_trip(cf) -> bool:
     return True
 
 
-def check_file(path: str) -> dict:
-    from ..controller import parse
-    from ..document import Document
+def check_file(path: str, ignore: frozenset = frozenset()) -> dict:
+    from ..controller import load
+    return check_parsed(load(path, full=True), ignore)
 
-    doc = Document.read(path)
-    cf = parse(doc, full=True)
-    return {"file": path, "vendor": cf.vendor, "encoding": doc.encoding + ("-bom" if doc.bom else ""),
+
+def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
+    doc = cf.document
+    return {"file": cf.path, "vendor": cf.vendor,
+            "encoding": doc.encoding + ("-bom" if doc.bom else ""),
             "frames": len(cf.frames), "round_trip": round_trip(cf),
-            "lints": [l.as_dict() for l in cf.lints]}
+            "lints": [l.as_dict() for l in cf.lints if l.code not in ignore]}
+
+
+def ignored_codes(values: list[str]) -> frozenset:
+    """--ignore a,b --ignore c -> {a, b, c}; an unknown code is a usage error
+    with the nearest real one suggested (a typo must not silence nothing)."""
+    import difflib
+
+    from ..controller import LINT_CODES
+    from ..errors import UsageError
+    codes = {c.strip().lower() for v in values for c in v.split(",") if c.strip()}
+    for c in sorted(codes):
+        if c not in LINT_CODES:
+            close = difflib.get_close_matches(c, list(LINT_CODES), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else " (the README lists the codes)"
+            raise UsageError(f"ucsio check: --ignore: no lint code {c!r}{hint}")
+    return frozenset(codes)
 
 
 def run(args) -> int:
-    results = [check_file(f) for f in args.files]
+    from ..output import paint
+    from . import load_inputs, report_failures
+
+    ignore = ignored_codes(args.ignore)
+    parsed, errors = load_inputs(args.files, full=True)
+    results = [check_parsed(cf, ignore) for _, cf in parsed]
     bad = any(not r["round_trip"] or any(l["severity"] != "info" for l in r["lints"])
               for r in results)
+    status = 2 if errors else 1 if bad else 0
     if args.json:
-        emit_json({"files": results, "ok": not bad})
-        return 1 if bad else 0
+        emit_json({"files": results, "errors": [e.as_dict() for e in errors],
+                   "ok": status == 0})
+        report_failures(errors)
+        return status
     for r in results:
-        status = "round trip ok" if r["round_trip"] else "ROUND TRIP FAILED"
-        print(f"{r['file']}: {r['vendor']}, {r['encoding']}, {r['frames']} frames, {status}")
+        state = paint("round trip ok", "pass") if r["round_trip"] else \
+            paint("ROUND TRIP FAILED", "fail")
+        print(f"{r['file']}: {r['vendor']}, {r['encoding']}, {r['frames']} frames, {state}")
         for l in r["lints"]:
-            print(f"{r['file']}:{l['line']}:{l['col']}: {l['severity']}: {l['code']}: {l['message']}")
-    return 1 if bad else 0
+            sev = paint(l["severity"], "fail" if l["severity"] == "warning" else "info")
+            print(f"{r['file']}:{l['line']}:{l['col']}: {sev}: {l['code']}: {l['message']}")
+    for e in errors:    # listed with the others: an unreadable file is part of the check
+        print(f"{e.file}: {paint('NOT READ', 'fail')}: {e.message}"
+              + (f" (line {e.line}, col {e.col})" if e.line is not None else ""))
+    if len(results) + len(errors) > 1:
+        n_warn = sum(l["severity"] == "warning" for r in results for l in r["lints"])
+        print(f"{len(results) + len(errors)} files: {len(results)} read, {len(errors)} not read, "
+              f"{sum(not r['round_trip'] for r in results)} round trips failed, {n_warn} warnings")
+    report_failures(errors)
+    return status

@@ -1,22 +1,31 @@
 """List every frame in controller files: ABB wobjdata (uframe and NAME.oframe),
-tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data."""
+tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data.
+
+FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
+.prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
+that cannot be read is reported on stderr (with --json also in "errors") and
+the others are still listed; exit 2 at the end if any could not be read."""
 from __future__ import annotations
 
 from ..output import emit_json, fmt, table
 
 
 def add_arguments(p) -> None:
-    p.add_argument("files", nargs="+", metavar="FILE", help="RAPID module or KRL .dat file")
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="RAPID module, KRL .dat file, backup folder or .zip archive")
 
 
 def run(args) -> int:
-    from ..controller import load
+    from . import load_inputs, report_failures
 
-    cells = [load(f) for f in args.files]  # parse all first: bad input writes nothing
-    frames = [fr for c in cells for fr in c.frames]
+    parsed, errors = load_inputs(args.files)
+    status = 2 if errors else 0
+    frames = [fr for _, c in parsed for fr in c.frames]
     if args.json:
-        emit_json({"frames": [f.as_dict() for f in frames]})
-        return 0
+        emit_json({"frames": [f.as_dict() for f in frames],
+                   "errors": [e.as_dict() for e in errors]})
+        report_failures(errors)
+        return status
     rows = []
     for f in frames:
         p = f.pose
@@ -35,4 +44,5 @@ def run(args) -> int:
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
         print("no frames")
-    return 0
+    report_failures(errors)
+    return status

@@ -1,0 +1,192 @@
+"""Whole backups: the controller files in folders and ``.zip`` archives.
+
+A command given a folder (an ABB backup or ``RAPID`` tree, a KUKA ``KRC``
+tree) reads every ``.mod .modx .sys .sysx .prg .dat`` below it; given a
+``.zip`` (a KUKA archive) it reads the same members straight from the archive
+with the standard library, never extracting anything to disk. A member is
+named ``ARCHIVE.zip!path/in/archive``, and that name is accepted back as an
+input.
+
+Each input becomes Sources; reading or parsing one can fail on its own, so
+commands collect the failures and go on (one encrypted module never hides the
+35 good files beside it).
+"""
+from __future__ import annotations
+
+import os
+
+from .errors import UcsioError
+from .values import Value
+
+# SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
+BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat")
+MEMBER_MARK = "!"
+
+
+class Source(Value):
+    """One controller file to read: ``name`` as shown and as frames' ``file``,
+    ``rel`` its path inside the backup it came from (for pairing two backups;
+    the base name for a file given on its own), and where its bytes are."""
+
+    __slots__ = ("name", "rel", "path", "archive", "member")
+
+    def __init__(self, name: str, rel: str, path: str | None = None,
+                 archive: str | None = None, member: str | None = None):
+        self.name, self.rel, self.path, self.archive, self.member = name, rel, path, archive, member
+
+    def read(self) -> bytes:
+        if self.archive is None:
+            from .files import read_bytes
+            return read_bytes(self.path, "controller file")
+        return _read_member(self.archive, self.member, self.name)
+
+    def document(self):
+        from .document import Document
+        return Document(self.read(), self.name)
+
+    def load(self, full: bool = False):
+        """The parsed file (a UcsioError naming the file when it cannot be read)."""
+        from .controller import parse
+        return parse(self.document(), full=full)
+
+
+class Failure(Value):
+    """An input that could not be read at all (a missing path, a broken archive)."""
+
+    __slots__ = ("error",)
+
+    def __init__(self, error: UcsioError):
+        self.error = error
+
+
+def is_archive(path: str) -> bool:
+    return path.lower().endswith(".zip") and os.path.isfile(path)
+
+
+def split_member(name: str) -> tuple[str, str] | None:
+    """``ARCHIVE.zip!path`` -> (archive, member) when the archive exists."""
+    i = name.lower().find(".zip" + MEMBER_MARK)
+    if i < 0:
+        return None
+    archive, member = name[:i + 4], name[i + 5:]
+    if not os.path.isfile(archive) or not member:
+        return None
+    return archive, member
+
+
+def is_member(name: str) -> bool:
+    return not os.path.exists(name) and split_member(name) is not None
+
+
+def is_many(path: str) -> bool:
+    """Whether an input stands for many files (a folder or an archive)."""
+    return os.path.isdir(path) or is_archive(path)
+
+
+def expand(paths: list[str]) -> list[Source | Failure]:
+    """Every controller file the inputs stand for, in order: a file as
+    itself, a folder's and an archive's controller files sorted by path."""
+    out: list[Source | Failure] = []
+    for p in paths:
+        p = os.fspath(p)
+        try:
+            if os.path.isdir(p):
+                out.extend(folder_sources(p))
+            elif is_archive(p):
+                out.extend(archive_sources(p))
+            elif is_member(p):
+                archive, member = split_member(p)
+                out.append(Source(p, member, archive=archive, member=member))
+            else:
+                out.append(Source(p, os.path.basename(p), path=p))
+        except UcsioError as exc:
+            out.append(Failure(exc))
+    return out
+
+
+def folder_sources(folder: str) -> list[Source]:
+    found = []
+    for root, dirs, files in os.walk(folder, onerror=None):
+        dirs.sort()
+        for f in files:
+            if f.lower().endswith(BACKUP_SUFFIXES):
+                full = os.path.join(root, f)
+                rel = os.path.relpath(full, folder).replace(os.sep, "/")
+                found.append(Source(full, rel, path=full))
+    found.sort(key=lambda s: s.rel.casefold())
+    return found
+
+
+_OPEN: dict[str, object] = {}   # archive path -> ZipFile: its directory is read once per run
+
+
+def _open_zip(archive: str):
+    import zipfile   # only archives pay for it
+    zf = _OPEN.get(archive)
+    if zf is None:
+        try:
+            zf = zipfile.ZipFile(archive)
+        except (zipfile.BadZipFile, OSError, ValueError) as exc:
+            raise UcsioError(f"not a readable zip archive ({exc})", file=archive) from None
+        _OPEN[archive] = zf
+    return zf
+
+
+def archive_sources(archive: str) -> list[Source]:
+    zf = _open_zip(archive)
+    names = [i.filename for i in zf.infolist() if not i.is_dir()]
+    found = [Source(f"{archive}{MEMBER_MARK}{n}", n.lstrip("/"), archive=archive, member=n)
+             for n in names if n.lower().endswith(BACKUP_SUFFIXES)]
+    found.sort(key=lambda s: s.rel.casefold())
+    return found
+
+
+def _read_member(archive: str, member: str, name: str) -> bytes:
+    import zipfile
+    zf = _open_zip(archive)
+    try:
+        return zf.read(member)
+    except KeyError:
+        raise UcsioError("no such file in the archive", file=name) from None
+    except (zipfile.BadZipFile, RuntimeError, NotImplementedError, OSError, EOFError) as exc:
+        # RuntimeError: an encrypted member; NotImplementedError: an unknown compression
+        raise UcsioError(f"cannot read from the archive ({exc})", file=name) from None
+
+
+def load_all(paths: list[str], full: bool = False):
+    """Parse every controller file the inputs stand for. Returns
+    ``(parsed, errors)``: (Source, ControllerFile) pairs and UcsioErrors, so
+    that one bad file is reported beside the others, never instead of them."""
+    parsed, errors = [], []
+    for s in expand(paths):
+        if isinstance(s, Failure):
+            errors.append(s.error)
+            continue
+        try:
+            parsed.append((s, s.load(full=full)))
+        except UcsioError as exc:
+            if exc.file is None:
+                exc.file = s.name
+            errors.append(exc)
+    return parsed, errors
+
+
+def single_input(paths: list[str]) -> bool:
+    """One plain file: its error is SPEC's single ``error`` object, not a list."""
+    return len(paths) == 1 and not is_many(os.fspath(paths[0]))
+
+
+def load_one(name: str, full: bool = False):
+    """A single controller file, which may be an archive member."""
+    if is_member(name):
+        archive, member = split_member(name)
+        return Source(name, member, archive=archive, member=member).load(full=full)
+    from .controller import load
+    return load(name, full=full)
+
+
+def refuse_member(name: str, what: str = "patch") -> None:
+    """``patch`` writes files; a file inside an archive must be extracted first."""
+    if is_member(name) or is_archive(name):
+        raise UcsioError(f"{what} does not write into an archive: extract the file first",
+                         file=name)
