@@ -206,6 +206,15 @@ def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) ->
     if not (result["changed"] or result["added"] or result["removed"]):
         lines.append(f"  no frame changed ({result['unchanged']} frames compared)")
         return "\n".join(lines) + "\n"
+    lines.extend(change_lines(result))
+    lines.append(f"  {len(result['changed'])} changed, {len(result['added'])} added, "
+                 f"{len(result['removed'])} removed, {result['unchanged']} unchanged")
+    return "\n".join(lines) + "\n"
+
+
+def change_lines(result: dict[str, Any]) -> list[str]:
+    """The frames changed (with their Δ and old/new values), added and removed."""
+    lines: list[str] = []
     for c in result["changed"]:
         head = f"~ {c['name']} ({c['type']}): {', '.join(c['changes'])} changed"
         lines.append(head)
@@ -227,9 +236,7 @@ def format_files_diff(result: dict[str, Any], old_label: str, new_label: str) ->
         lines.append(f"+ {a['name']} ({a['type']}) added: {_pose_text(a)}")
     for r in result["removed"]:
         lines.append(f"- {r['name']} ({r['type']}) removed: {_pose_text(r)}")
-    lines.append(f"  {len(result['changed'])} changed, {len(result['added'])} added, "
-                 f"{len(result['removed'])} removed, {result['unchanged']} unchanged")
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 # ------------------------------------------------------------- git
@@ -287,6 +294,14 @@ def _frame_lines(cf: ControllerFile | None, names: set[str]) -> set[int]:
     doc = cf.document
     return {doc.line_of(n.span.start) - 1 for f in cf.frames if f.name in names
             for n in f.numbers.values()}
+
+
+def lines_changed_beyond_frames(old: ControllerFile | None, new: ControllerFile | None,
+                                result: dict[str, Any]) -> bool:
+    """Whether a two-file diff ``result`` leaves lines changed that its frame
+    report does not show (a comment, a routine, a load)."""
+    reported = {x["name"] for key in ("changed", "added", "removed") for x in result[key]}
+    return _other_lines_changed(old, new, reported)
 
 
 def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None,

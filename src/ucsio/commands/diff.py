@@ -7,8 +7,12 @@
       the frame moves in world (the worst ten, and the count).
   ucsio diff OLD NEW
       every frame of two controller files matched by name: changed, added,
-      removed. Differences below float32 precision count as unchanged. Exit 0
-      whether or not frames changed (as git's external diff expects).
+      removed. Differences below float32 precision count as unchanged.
+      OLD and NEW may be two backup folders or .zip archives: files are paired
+      by their path inside each, and files added and removed are listed too.
+      Exit 0 whether or not anything changed (as git's external diff
+      expects); with --exit-code, 1 when anything differs (as git diff
+      --exit-code); 2 when a changed file cannot be read.
   ucsio diff --textconv FILE
       one stable line per frame (values as written), then the file's text,
       for git's diff.<driver>.textconv: nothing in the file can change unseen.
@@ -43,10 +47,12 @@ def add_arguments(p) -> None:
                         "robtargets moved to with \\WObj:=NAME in the folder's modules)")
     p.add_argument("--textconv", action="store_true",
                    help="print FILE's frames one per line (git diff.<driver>.textconv)")
+    p.add_argument("--exit-code", action="store_true",
+                   help="OLD NEW: exit 1 when anything differs, 0 when nothing does")
 
 
 def run(args) -> int:
-    from ..errors import UcsioError, UsageError
+    from ..errors import UsageError
 
     files = args.files
     if args.textconv:
@@ -59,23 +65,51 @@ def run(args) -> int:
         return 0
     if args.frame or args.measured:
         if not (args.frame and args.measured) or len(files) != 1:
-            raise UcsioError("usage: ucsio diff FILE --frame NAME --measured SOLUTION.json")
+            raise UsageError("ucsio diff: expected FILE --frame NAME --measured SOLUTION.json")
         return _one_frame(args)
     if args.tolerance is not None or args.oframe or args.points:
-        raise UcsioError("--tolerance, --oframe and --points go with --frame and --measured")
+        raise UsageError("ucsio diff: --tolerance, --oframe and --points go with --frame "
+                         "and --measured")
     if len(files) == 7:
         return _git(args)
     if len(files) != 2:
-        raise UcsioError("usage: ucsio diff OLD NEW | ucsio diff FILE --frame NAME "
-                         "--measured SOLUTION.json | ucsio diff --textconv FILE")
-    from ..controller import load
+        raise UsageError("ucsio diff: expected OLD NEW, FILE --frame NAME --measured "
+                         "SOLUTION.json, or --textconv FILE (see ucsio diff --help)")
+    from ..backup import is_many
+    many = [is_many(f) for f in files]
+    if any(many):
+        if not all(many):
+            raise UsageError("ucsio diff: OLD and NEW are both files or both backups "
+                             "(folders or .zip archives)")
+        return _backups(args)
+    from ..backup import load_one
+    from ..output import paint_diff
     from ..review import files_diff_text
-    text, result = files_diff_text(load(files[0]), load(files[1]), files[0], files[1])
+    old, new = load_one(files[0]), load_one(files[1])
+    text, result = files_diff_text(old, new, files[0], files[1])
     if args.json:
         emit_json(result)
     else:
-        sys.stdout.write(text)
+        sys.stdout.write(paint_diff(text))
+    if args.exit_code and old.document.raw != new.document.raw:
+        return 1
     return 0
+
+
+def _backups(args) -> int:
+    from ..backup_diff import as_json, diff_backups, differs, format_backup_diff
+    from ..output import paint_diff
+    from . import report_failures
+
+    result = diff_backups(*args.files)
+    if args.json:
+        emit_json(as_json(result))
+    else:
+        sys.stdout.write(paint_diff(format_backup_diff(result)))
+    report_failures(result["errors"])
+    if result["errors"]:
+        return 2
+    return 1 if args.exit_code and differs(result) else 0
 
 
 def _git(args) -> int:
@@ -91,7 +125,7 @@ def _git(args) -> int:
 
 def _one_frame(args) -> int:
     from ..api import read_solution
-    from ..controller import load
+    from ..backup import load_one as load
     from ..diff import DEFAULT_TOLERANCE
     from ..review import diff_frame
 

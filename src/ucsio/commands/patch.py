@@ -73,6 +73,8 @@ def run(args) -> int:
 
     if args.backup and not args.in_place:
         raise UcsioError("--backup goes with --in-place")
+    from ..backup import refuse_member
+    refuse_member(args.file)
     pose, measured = target_pose(args)
     cf = load(args.file)
     result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,

@@ -1,0 +1,150 @@
+"""Two whole backups side by side: the review before a download.
+
+``ucsio diff OLD NEW`` on two folders or archives pairs the controller files
+by their path inside each backup (case-insensitively, as the controllers'
+file systems are), and reports files added and removed, then per changed
+file its frames changed, added and removed. Files whose bytes are equal are
+not even parsed (an encrypted module that did not change is no error); a file
+that changed but cannot be read is listed with its error (exit 2).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from .backup import Failure, Source, expand
+from .errors import UcsioError
+
+
+def _sources(path: str) -> dict[str, Source]:
+    out: dict[str, Source] = {}
+    for s in expand([path]):
+        if isinstance(s, Failure):      # the backup itself is unreadable: nothing to compare
+            raise s.error
+        out.setdefault(s.rel.casefold(), s)
+    return out
+
+
+def _frame_names(src: Source, errors: list) -> list[str]:
+    try:
+        return [f.name for f in src.load().frames]
+    except UcsioError as exc:
+        errors.append(exc)
+        return []
+
+
+def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
+    from .review import diff_files, lines_changed_beyond_frames
+
+    olds, news = _sources(old_path), _sources(new_path)
+    errors: list[UcsioError] = []
+    files_added, files_removed, files_changed = [], [], []
+    changed, added, removed = [], [], []
+    unchanged_files = 0
+    for key in sorted(set(olds) | set(news)):
+        o, n = olds.get(key), news.get(key)
+        if o is None:
+            files_added.append({"path": n.rel, "file": n.name, "frames": _frame_names(n, errors)})
+            continue
+        if n is None:
+            files_removed.append({"path": o.rel, "file": o.name,
+                                  "frames": _frame_names(o, errors)})
+            continue
+        try:
+            old_bytes, new_bytes = o.read(), n.read()
+        except UcsioError as exc:
+            errors.append(exc)
+            continue
+        if old_bytes == new_bytes:
+            unchanged_files += 1
+            continue
+        from .controller import parse
+        from .document import Document
+        try:
+            ocf = parse(Document(old_bytes, o.name))
+            ncf = parse(Document(new_bytes, n.name))
+        except UcsioError as exc:
+            errors.append(exc)
+            files_changed.append({"path": n.rel, "old_file": o.name, "file": n.name,
+                                  "frames_changed": None, "frames_added": None,
+                                  "frames_removed": None, "other_lines": None,
+                                  "error": str(exc)})
+            continue
+        r = diff_files(ocf, ncf)
+        for key_, bucket in (("changed", changed), ("added", added), ("removed", removed)):
+            for item in r[key_]:
+                bucket.append(dict(item, path=n.rel))
+        files_changed.append({"path": n.rel, "old_file": o.name, "file": n.name,
+                              "frames_changed": len(r["changed"]),
+                              "frames_added": len(r["added"]),
+                              "frames_removed": len(r["removed"]),
+                              "frames_unchanged": r["unchanged"],
+                              "other_lines": lines_changed_beyond_frames(ocf, ncf, r),
+                              "detail": r})
+    return {"old": old_path, "new": new_path,
+            "files_added": files_added, "files_removed": files_removed,
+            "files_changed": files_changed, "files_unchanged": unchanged_files,
+            "changed": changed, "added": added, "removed": removed,
+            "errors": errors}
+
+
+def differs(result: dict[str, Any]) -> bool:
+    return bool(result["files_added"] or result["files_removed"] or result["files_changed"])
+
+
+def as_json(result: dict[str, Any]) -> dict[str, Any]:
+    out = {k: v for k, v in result.items() if k != "errors"}
+    out["files_changed"] = [{k: v for k, v in f.items() if k != "detail"}
+                            for f in result["files_changed"]]
+    out["errors"] = [e.as_dict() for e in result["errors"]]
+    return out
+
+
+def _n(count: int, what: str) -> str:
+    return f"{count} {what}{'' if count == 1 else 's'}"
+
+
+def format_backup_diff(result: dict[str, Any]) -> str:
+    """Summary first (what a reviewer needs in ten seconds), then files added
+    and removed, then each changed file with its frames."""
+    from .review import change_lines
+
+    fa, fr, fc = result["files_added"], result["files_removed"], result["files_changed"]
+    total = len(fa) + len(fr) + len(fc) + result["files_unchanged"]
+    lines = [f"ucsio diff {result['old']} {result['new']}",
+             f"  files:  {len(fc)} changed, {len(fa)} added, {len(fr)} removed, "
+             f"{result['files_unchanged']} unchanged ({total} controller files)",
+             f"  frames: {len(result['changed'])} changed, {len(result['added'])} added, "
+             f"{len(result['removed'])} removed (in files present in both)"]
+    if result["errors"]:
+        lines.append(f"  NOT READ: {_n(len(result['errors']), 'file')} (marked NOT READ below)")
+    if not differs(result):
+        lines.append("  no difference")
+    for f in fa:
+        lines.append(f"+ {f['path']}: file added ({_n(len(f['frames']), 'frame')}"
+                     + (": " + ", ".join(f["frames"][:8]) + (", ..." if len(f["frames"]) > 8 else "")
+                        if f["frames"] else "") + ")")
+    for f in fr:
+        lines.append(f"- {f['path']}: file removed ({_n(len(f['frames']), 'frame')}"
+                     + (": " + ", ".join(f["frames"][:8]) + (", ..." if len(f["frames"]) > 8 else "")
+                        if f["frames"] else "") + ")")
+    for f in fc:
+        if f.get("error"):
+            lines.append(f"~ {f['path']}: changed, NOT READ: {f['error']}")
+            continue
+        r = f["detail"]
+        n_frames = f["frames_changed"] + f["frames_added"] + f["frames_removed"]
+        what = []
+        if n_frames:
+            what.append(f"{_n(f['frames_changed'], 'frame')} changed, {f['frames_added']} added, "
+                        f"{f['frames_removed']} removed")
+        if f["other_lines"]:
+            what.append("other lines changed" if n_frames else
+                        "lines changed, no frame (ucsio diff OLD-FILE NEW-FILE shows them)")
+        lines.append(f"~ {f['path']}: " + "; ".join(what or ["bytes changed (line endings "
+                                                              "or encoding), no line"]))
+        lines.extend("    " + ln for ln in change_lines(r))
+    shown = {f["error"] for f in fc if f.get("error")}
+    for e in result["errors"]:
+        if str(e) not in shown:
+            lines.append(f"! NOT READ: {e}")
+    return "\n".join(lines) + "\n"
