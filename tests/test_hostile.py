@@ -14,6 +14,7 @@ from ucsio import rotations as rot
 from ucsio.cli import main
 from ucsio.controller import load, parse
 from ucsio.document import Document
+from ucsio.errors import UcsioError
 from ucsio.frames import Pose
 from ucsio.patch import patch_frame
 
@@ -94,3 +95,39 @@ def test_kuka_glued_component_written_forms(x, written):
     res = patch_frame(load(GLUED), "fGlued", Pose.from_abc(x, -0.5, 3, 0, 0, 90), measured=False)
     line = Document(res.new_bytes).text.splitlines()[3]
     assert line.startswith("DECL FRAME fGlued=" + written), line
+
+
+# ------------------------------------------------------------------ point 1
+
+def _shapes():
+    import sys
+    sys.path.insert(0, str(FIXTURES.parent / "benchmarks"))
+    import bench_linear
+    return bench_linear
+
+
+@pytest.mark.parametrize("shape", ["rapid many PERS", "rapid blanks around decl",
+                                   "rapid long word at EOF", "rapid unterminated decl, blanks",
+                                   "rapid comment of numbers", "rapid dotted digits",
+                                   "krl long word", "krl spaces lines"])
+def test_hostile_shapes_take_linear_time(shape):
+    """Shapes that once took quadratic time (a 40 KB file ~20 s, 80 KB over
+    90 s). At 200 KB a quadratic pass would take minutes; linear is well under
+    a second (benchmarks/bench_linear.py measures the ratios)."""
+    import time
+    bench = _shapes()
+    name, text = bench.SHAPES[shape](200_000)
+    t0 = time.perf_counter()
+    bench.run_commands(name, text)
+    assert time.perf_counter() - t0 < 10.0
+
+
+def test_error_messages_quote_a_bounded_piece_of_the_input():
+    bench = _shapes()
+    for shape in ("rapid dotted digits", "rapid digits then letter", "krl long word",
+                  "krl digits dots", "rapid long word"):
+        name, text = bench.SHAPES[shape](100_000)
+        with pytest.raises(UcsioError) as exc:
+            for full in (False, True):
+                parse(Document(text.encode(), name), full=full)
+        assert len(str(exc.value)) < 200 and "\n" not in str(exc.value)

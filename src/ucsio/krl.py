@@ -308,7 +308,7 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
         pos = exc.pos_in_stream
         bad = _bad_number(text, pos)
         if bad:
-            return doc.error(f"malformed number {text[bad[0]:bad[1]]!r}", bad[0])
+            return doc.error(f"malformed number {_short(text[bad[0]:bad[1]])!r}", bad[0])
         ch = text[pos]
         if ch == '"':
             return doc.error("unterminated string: missing '\"' before the end of the line", pos)
@@ -328,7 +328,7 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
         pos = tok.start_pos
         bad = _bad_number(text, pos)
         if bad:
-            return doc.error(f"malformed number {text[bad[0]:bad[1]]!r}", bad[0])
+            return doc.error(f"malformed number {_short(text[bad[0]:bad[1]])!r}", bad[0])
         if tok.type == "_NL":
             if "RBRACE" in expected:
                 return doc.error("unterminated structure: missing '}' before the end of the line",
@@ -337,11 +337,11 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
                 return doc.error("unterminated index: missing ']' before the end of the line", pos)
             return doc.error("unexpected end of line" + _expecting(expected), pos)
         if expected == {"_NL", "$END"}:     # only after ENDDAT
-            return doc.error(f"unexpected {tok.value!r} after ENDDAT: only blank and comment "
+            return doc.error(f"unexpected {_short(tok.value)!r} after ENDDAT: only blank and comment "
                              f"lines may follow the data list", pos)
         if tok.type == "ENDDAT" or tok.type == "DEFDAT":
             return doc.error(f"unexpected {tok.value}" + _expecting(expected), pos)
-        return doc.error(f"syntax error: unexpected {tok.value!r}" + _expecting(expected), pos)
+        return doc.error(f"syntax error: unexpected {_short(tok.value)!r}" + _expecting(expected), pos)
     raise exc
 
 
@@ -350,6 +350,11 @@ _READABLE = {"_NL": "end of line", "NAME": "a name", "NUMBER": "a number", "INT"
              "HEADER": "an & header", "$END": "end of file", "LBRACE": "'{'", "RBRACE": "'}'",
              "LSQB": "'['", "RSQB": "']'", "COMMA": "','", "EQUAL": "'='", "COLON": "':'",
              "LPAR": "'('", "RPAR": "')'"}
+
+
+def _short(s: str, limit: int = 30) -> str:
+    """Quoted input in a message: one readable line, not a megabyte."""
+    return s if len(s) <= limit else s[:limit] + "..."
 
 
 def _expecting(expected: set) -> str:

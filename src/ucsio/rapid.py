@@ -76,7 +76,7 @@ _TRIVIA = re.compile(r"(?:\s++|![^\r\n]*+)*+")
 _BAD_NUMBER = re.compile(
     r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
     r"|\.\d*+(?:[.A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]))")
-_NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*")
+_NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*+")
 _RADIX = re.compile(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
 
 
@@ -104,8 +104,10 @@ def outline(doc: Document, routines: bool = False) -> list[Region]:
     pos = 0
     in_module = False
     seen_module = False
-    for m in _OUTLINE.finditer(text):
-        if m.start() != pos:
+    match = _OUTLINE.match       # match, not finditer: a search past a failed item would
+    while True:                  # retry every later position, each up to the end (quadratic)
+        m = match(text, pos)
+        if m is None:
             break
         pos = m.end()
         kind = m.lastgroup
@@ -181,33 +183,39 @@ def _check_numbers(doc: Document) -> None:
     "12ab") is bad wherever it stands in live code. The regex only finds
     candidates; digits inside names (p10, tool0.tframe) are skipped here.
     This costs a pass over every digit, so only ``check`` runs it on the whole
-    file; the fast path's Lark parse checks the numbers of frame data."""
+    file; the fast path's Lark parse checks the numbers of frame data.
+
+    Linear on any text: strings and comments are blanked in one pass (not
+    looked up per candidate), and a run of digits and dots is judged once,
+    however many candidates it holds."""
     text = doc.text
-    for m in _BAD_NUMBER.finditer(text):
+    live = _STRINGS_AND_COMMENTS.sub(_blank, text) if ('"' in text or "!" in text) else text
+    judged = 0                  # candidates before this lie in a run already judged
+    for m in _BAD_NUMBER.finditer(live):
+        if m.start() < judged:
+            continue
         i = m.start()
-        while i > 0 and (text[i - 1].isdigit() or text[i - 1] == "."):
+        while i > 0 and (live[i - 1].isdigit() or live[i - 1] == "."):
             i -= 1
-        if i > 0 and (text[i - 1].isalnum() or text[i - 1] == "_"):
+        judged = _DIGITS_DOTS.match(live, i).end()
+        if i > 0 and (live[i - 1].isalnum() or live[i - 1] == "_"):
             continue  # digits inside a name
-        if text[i] == "." and i > 0 and text[i - 1] in ")}]":
+        if live[i] == "." and i > 0 and live[i - 1] in ")}]":
             continue
-        if _RADIX.match(text, i) or _in_string_or_comment(text, i):
+        if _RADIX.match(live, i):
             continue
-        raise doc.error(f"bad number {_NUMBER_RUN.match(text, i).group()!r}", i)
+        raise doc.error(f"bad number {_NUMBER_RUN.match(text, i, i + 40).group()!r}", i)
 
 
-def _in_string_or_comment(text: str, pos: int) -> bool:
-    """Strings and comments never span lines in RAPID: scan this line only."""
-    i = max(text.rfind("\n", 0, pos), text.rfind("\r", 0, pos)) + 1
-    in_string = False
-    while i < pos:
-        c = text[i]
-        if c == '"':
-            in_string = not in_string
-        elif c == "!" and not in_string:
-            return True
-        i += 1
-    return in_string
+# Strings and comments never span lines in RAPID; "" inside a string reads as
+# two strings back to back, which blanks the same characters. A string not
+# closed on its line runs to the line's end.
+_STRINGS_AND_COMMENTS = re.compile(r'"[^"\r\n]*+"?|![^\r\n]*+')
+_DIGITS_DOTS = re.compile(r"[\d.]*")
+
+
+def _blank(m: re.Match) -> str:
+    return " " * (m.end() - m.start())
 
 
 def _explain(text: str, pos: int) -> str:
