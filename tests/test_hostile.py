@@ -131,3 +131,59 @@ def test_error_messages_quote_a_bounded_piece_of_the_input():
             for full in (False, True):
                 parse(Document(text.encode(), name), full=full)
         assert len(str(exc.value)) < 200 and "\n" not in str(exc.value)
+
+
+# ------------------------------------------------------------------ points 2 and 3
+
+BAD = [  # fixture, line:col, message part
+    ("deep_wobj.mod", "3:355", "nested more than 100 levels deep"),
+    ("deep_signs.mod", "3:257", "nested more than 100 levels deep"),
+    ("deep_frame.dat", "3:317", "nested more than 100 levels deep"),
+    ("deep_load.dat", "4:324", "nested more than 100 levels deep"),
+    ("huge_dim.mod", "3:19", "array dimension 1E400 is not a size"),
+    ("huge_radix.mod", "4:37", "out of range for a RAPID num"),
+    ("huge_max.dat", "3:14", "1E400 is out of range for a KRL INT"),
+    ("huge_index.dat", "4:11", "out of range for a KRL INT"),
+    ("huge_machine.dat", "5:38", "1E400 is out of range for a KRL INT"),
+    ("huge_real.dat", "3:17", "1E400 is out of range for a KRL REAL"),
+]
+
+
+@pytest.mark.parametrize("name,where,message", BAD, ids=[b[0] for b in BAD])
+@pytest.mark.parametrize("command", ["frames", "check", "patch"])
+def test_deep_and_huge_input_is_one_clear_line(capsys, name, where, message, command):
+    path = HOSTILE / name
+    before = path.read_bytes()
+    args = [command, str(path)]
+    if command == "patch":
+        args += ["--frame", "w" if name.endswith(".mod") else "BASE_DATA[1]", "--set",
+                 "1,2,3,0,0,0", "--in-place"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err == f"ucsio: {path}:{where}: " + err.split(f"{where}: ", 1)[1]
+    assert message in err and err.count("\n") == 1 and len(err) < 200
+    assert path.read_bytes() == before
+
+
+def test_deep_nesting_outside_frame_data_is_accepted_by_both_paths():
+    path = HOSTILE / "deep_record.mod"
+    fast, full = load(path), load(path, full=True)
+    assert [f.name for f in fast.frames] == [f.name for f in full.frames] == ["w", "w.oframe"]
+    assert main(["check", str(path)]) == 0
+
+
+def test_huge_number_outside_frame_data_is_kept_as_written():
+    text = (HOSTILE / "huge_radix.mod").read_text()
+    text = text[:text.index("  PERS wobjdata")] + "ENDMODULE\n"     # without the bad frame
+    cf = parse(Document(text.encode(), "big.mod"), full=True)
+    big = [d for d in cf.extra["declarations"] if d.name == "big"][0]
+    assert big.value.value == float("inf") and big.value.text.startswith("0d999")
+
+
+def test_unreadable_sibling_module_is_a_warning(tmp_path, capsys):
+    for p in (HOSTILE / "siblings").iterdir():
+        (tmp_path / p.name).write_bytes(p.read_bytes())
+    rc = main(["patch", str(tmp_path / "Cell.mod"), "--frame", "wShared", "--set", "1,2,4,0,0,0"])
+    err = capsys.readouterr().err
+    assert rc == 0 and "warning: could not read sibling module Broken.mod" in err
+    assert "nested more than 100 levels deep" in err and "Traceback" not in err

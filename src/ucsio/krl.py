@@ -208,7 +208,8 @@ def _machine_lines(mframes, mdefs) -> list[tuple[int, int]]:
             spans.append(span)
     if spans:
         # MACHINE_DEF[k]...: k is the entry; any other shape, keep the line
-        spans += [span for span, k in mdefs if every or not k or int(k) in refs]
+        spans += [span for span, k in mdefs
+                  if every or not k or len(k) > 10 or int(k) in refs]
     return spans
 
 
@@ -352,6 +353,21 @@ _READABLE = {"_NL": "end of line", "NAME": "a name", "NUMBER": "a number", "INT"
              "LPAR": "'('", "RPAR": "')'"}
 
 
+INT_MAX = 2 ** 31 - 1               # KRL INT is 32 bit
+
+
+def _int(doc: Document, tok) -> int:
+    """An INT token (an index, a dimension) as a number; beyond 32 bits the
+    controller refuses it, and so does ucsio, naming where (Python would
+    otherwise refuse to convert a 5,000-digit string, with a traceback)."""
+    text = tok.value
+    value = int(text) if len(text) <= 10 else INT_MAX + 1
+    if value > INT_MAX:
+        raise doc.error(f"integer {_short(text)} is out of range for a KRL INT (32 bit)",
+                        tok.start_pos)
+    return value
+
+
 def _short(s: str, limit: int = 30) -> str:
     """Quoted input in a message: one readable line, not a megabyte."""
     return s if len(s) <= limit else s[:limit] + "..."
@@ -419,9 +435,22 @@ class _Name:
         self.value, self.start_pos = value, start_pos
 
 
-def _value(node, delta: int = 0) -> _Val:
+MAX_DEPTH = 100   # structures a value may nest (LOAD_DATA needs 2)
+
+
+class _TooDeep(Exception):
+    def __init__(self, pos: int):
+        self.pos = pos
+
+
+def _value(node, delta: int = 0, depth: int = 0) -> _Val:
     """The value ``node`` as a _Val; positions moved by ``delta`` (a value
-    parsed once for several lines with the same text, see _shared_values)."""
+    parsed once for several lines with the same text, see _shared_values).
+    Deeper than MAX_DEPTH raises _TooDeep (a clear error, not Python's
+    RecursionError)."""
+    if depth > MAX_DEPTH:
+        raise _TooDeep((node.start_pos if isinstance(node, str) else node.children[0].start_pos)
+                       + delta)
     if isinstance(node, str):           # a lark Token (a str); else a struct Tree
         t = node.type
         v = node.value
@@ -453,7 +482,7 @@ def _value(node, delta: int = 0) -> _Val:
         key = name.value.upper()
         if key in fields:
             dups.append((key, name.start_pos))
-        fields[key] = (name, _value(ch[-1], delta))
+        fields[key] = (name, _value(ch[-1], delta, depth + 1))
     val = _Val("struct", fields, children[0].start_pos + delta, children[-1].end_pos + delta)
     val.dups = dups
     return val
@@ -504,7 +533,7 @@ def _statements(tree, doc: Document):
                 val = None
                 for c in vch[1:]:
                     if isinstance(c, Tree) and c.data == "dims":
-                        dims = [int(t.value) if t.type == "INT" else t.value for t in c.children]
+                        dims = [_int(doc, t) if t.type == "INT" else t.value for t in c.children]
                     else:
                         val = c
                 s.vars.append((name, dims, val))
@@ -519,7 +548,7 @@ def _statements(tree, doc: Document):
             s.name = ch[0]
             s.index = None
             if len(ch) == 3:
-                s.index = [int(t.value) for t in ch[1].children]
+                s.index = [_int(doc, t) for t in ch[1].children]
             s.value = ch[-1]
             out.append(s)
         elif d == "defdat":
@@ -560,7 +589,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         else:
             stmts, tree = got
     cf = ControllerFile(document=doc, vendor=VENDOR)
-    _Interpreter(doc, cf).run(stmts)
+    try:
+        _Interpreter(doc, cf).run(stmts)
+    except _TooDeep as exc:
+        raise doc.error(f"value nested more than {MAX_DEPTH} levels deep", exc.pos) from None
     cf.extra["defdat"] = _defdat(tree)
     return cf
 
@@ -571,6 +603,13 @@ class _Interpreter:
         self.cf = cf
 
     # -- helpers --
+    def int_value(self, value: float, text: str, pos: int) -> int:
+        """A number where KRL wants an INT (MAX_* sizes, MACH_DEF_INDEX): the
+        controller converts a REAL in range and refuses anything beyond 32 bits."""
+        if not abs(value) <= INT_MAX:
+            raise self.doc.error(f"{_short(text)} is out of range for a KRL INT (32 bit)", pos)
+        return int(value)
+
     def lint(self, offset: int, code: str, message: str, severity: str = "warning") -> None:
         self.cf.lint(offset, code, message, severity)
 
@@ -599,7 +638,8 @@ class _Interpreter:
                     key = name.value.upper()
                     if key.startswith("MAX_") and dims is None and val is not None \
                             and getattr(val, "type", None) == "NUMBER":
-                        maxima[key] = int(float(val.value))
+                        maxima[key] = self.int_value(float(val.value), val.value,
+                                                     val.start_pos)
 
         # element lines, by table
         labels: dict[tuple[str, int], tuple[str, int]] = {}   # (TOOL|BASE, n) -> (label, offset)
@@ -638,7 +678,8 @@ class _Interpreter:
                 if v.kind == "struct":
                     f = v.value
                     idxv = f.get("MACH_DEF_INDEX")
-                    index = int(idxv[1].value) if idxv and idxv[1].kind == "number" else 0
+                    index = self.int_value(idxv[1].value, idxv[1].text, idxv[1].start) \
+                        if idxv and idxv[1].kind == "number" else 0
                     if not index:     # not tied to a kinematic: the fast path skips the line
                         continue
                     par = f.get("PARENT")
@@ -741,7 +782,8 @@ class _Interpreter:
                 self.lint(fv.start, "not-a-number", f"{name}: component {tok.value} is not a number")
                 continue
             if not (abs(fv.value) <= REAL_MAX):
-                raise doc.error(f"number {fv.text} is out of range for a KRL REAL (float32)",
+                raise doc.error(f"number {_short(fv.text)} is out of range for a KRL REAL "
+                                "(float32)",
                                 fv.start)
             nums[comp] = Number(Span(fv.start, fv.end), fv.text, fv.value)
         fr.numbers = {c: nums[c] for c in COMPONENTS if c in nums}

@@ -384,9 +384,10 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
             continue
         try:
             other = load(p)
-        except UcsioError as exc:
+        except Exception as exc:  # noqa: BLE001 - a sibling is only consulted: never fatal
+            why = exc.message if isinstance(exc, UcsioError) else f"{type(exc).__name__}: {exc}"
             if warnings is not None:
-                warnings.append(f"could not read sibling module {p.name} ({exc.message}); "
+                warnings.append(f"could not read sibling module {p.name} ({why}); "
                                 "it may declare the same PERS")
             continue
         for f in other.frames:

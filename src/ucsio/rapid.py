@@ -305,13 +305,40 @@ def _nice(names: list[str]) -> str:
 # -- declarations -> frames ---------------------------------------------------------
 class Decl(Value):
     """A module-level data declaration; ``value`` is the converted value tree
-    (Number, bool, str, list, or _Expr for anything computed)."""
+    (Number, bool, str, list, or _Expr for anything computed) and ``dims``
+    the array dimensions. Both are converted when first read: frames need
+    only the frame declarations' values, so a path module's robtargets (or a
+    record nested 10,000 deep, which the grammar accepts) cost nothing here,
+    and ``check`` and the fast path agree on what they accept."""
 
-    __slots__ = ("scope", "storage", "type", "name", "dims", "value", "start", "end", "module")
+    __slots__ = ("scope", "storage", "type", "name", "start", "end", "module", "_nodes",
+                 "_converted", "_doc")
+    _compare = ("scope", "storage", "type", "name", "start", "end", "module")
 
-    def __init__(self, scope, storage, type, name, dims, value, start, end, module):
+    def __init__(self, scope, storage, type, name, nodes, start, end, module, doc):
         self.scope, self.storage, self.type, self.name = scope, storage, type, name
-        self.dims, self.value, self.start, self.end, self.module = dims, value, start, end, module
+        self.start, self.end, self.module = start, end, module
+        self._nodes, self._converted, self._doc = nodes, None, doc
+
+    def _convert(self) -> tuple:
+        if self._converted is None:
+            dims_node, value_node = self._nodes
+            try:
+                dims = None if dims_node is None else [_value(d) for d in dims_node.children]
+                value = None if value_node is None else _value(value_node)
+            except _TooDeep as exc:
+                raise self._doc.error(f"{self.name}: value nested more than {MAX_DEPTH} levels "
+                                      "deep", exc.pos) from None
+            self._converted = (dims, value)
+        return self._converted
+
+    @property
+    def dims(self):
+        return self._convert()[0]
+
+    @property
+    def value(self):
+        return self._convert()[1]
 
 
 class _Expr:
@@ -336,10 +363,21 @@ def _placeholder_in(v) -> _Placeholder | None:
     return None
 
 
-def _value(node):
-    """Lark subtree -> Number | bool | str | list | _Expr."""
+MAX_DEPTH = 100   # aggregates and signs a frame value may nest (a wobjdata needs 3)
+
+
+class _TooDeep(Exception):
+    def __init__(self, pos: int):
+        self.pos = pos
+
+
+def _value(node, depth: int = 0):
+    """Lark subtree -> Number | bool | str | list | _Expr. Deeper than
+    MAX_DEPTH raises _TooDeep (a clear error, not Python's RecursionError)."""
     from lark import Token, Tree
 
+    if depth > MAX_DEPTH:
+        raise _TooDeep(_extent(node)[0])
     if isinstance(node, Token):
         return _Expr(node.start_pos, node.end_pos)
     kind = node.data
@@ -348,7 +386,7 @@ def _value(node):
         return Number(Span(tok.start_pos, tok.end_pos), str(tok), _num(str(tok)))
     if kind == "neg" or kind == "pos":
         sign_token, operand = node.children
-        inner = _value(operand)
+        inner = _value(operand, depth + 1)
         if isinstance(inner, Number):  # the sign joins the span in _with_text, if it may
             sign = -1.0 if kind == "neg" else 1.0
             return Number(inner.span, None, sign * inner.value,  # type: ignore[arg-type]
@@ -362,23 +400,43 @@ def _value(node):
         raw = str(node.children[0])[1:-1]
         return raw.replace('""', '"')
     if kind == "aggregate":
-        return [_value(c) for c in node.children if isinstance(c, Tree) or c.type != "COMMA"]
+        return [_value(c, depth + 1) for c in node.children
+                if isinstance(c, Tree) or c.type != "COMMA"]
     return _Expr(*_extent(node))
 
 
 def _extent(tree) -> tuple[int, int]:
-    """First and last token positions of a subtree (rule nodes carry none)."""
-    from lark import Token
+    """First and last token positions of a subtree (rule nodes carry none);
+    without recursion, however deep the tree."""
+    first, last = _edge_token(tree, 0), _edge_token(tree, -1)
+    return (first.start_pos, last.end_pos) if first is not None else (0, 0)
 
-    toks = [t for t in tree.scan_values(lambda v: isinstance(v, Token))]
-    return (toks[0].start_pos, toks[-1].end_pos) if toks else (0, 0)
+
+def _edge_token(tree, side: int):
+    """The first (side 0) or last (side -1) token under ``tree``."""
+    from lark import Tree
+
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        if not isinstance(node, Tree):
+            return node
+        # children pushed so that the wanted edge is popped first
+        stack.extend(node.children if side == -1 else reversed(node.children))
+    return None
 
 
 def _num(text: str) -> float:
+    """A literal's value; one too large for a float is inf (the caller
+    refuses it where it matters: a frame's numbers, a dimension)."""
     t = text.lower()
-    if t.startswith(("0x", "0o", "0b", "0d")) and len(t) > 2 and not t.startswith("0d."):
-        base = {"x": 16, "o": 8, "b": 2, "d": 10}[t[1]]
-        return float(int(t[2:], base))
+    if t.startswith(("0x", "0o", "0b")) and len(t) > 2:
+        try:
+            return float(int(t[2:], {"x": 16, "o": 8, "b": 2}[t[1]]))
+        except OverflowError:
+            return float("inf")
+    if t.startswith("0d") and len(t) > 2 and not t.startswith("0d."):
+        return float(t[2:])     # float(), not int(): no limit on the number of digits
     return float(text)
 
 
@@ -401,16 +459,15 @@ def declarations(doc: Document, tree) -> list[Decl]:
                 i = 1
             storage = str(ch[i].children[0]).upper()
             type_name, name = str(ch[i + 1]), str(ch[i + 2])
-            rest = ch[i + 3:]
-            dims = None
-            value = None
-            for r in rest:
+            dims_node = value_node = None
+            for r in ch[i + 3:]:
                 if isinstance(r, Tree) and r.data == "dims":
-                    dims = [_value(d) for d in r.children]
+                    dims_node = r
                 else:
-                    value = _value(r)
+                    value_node = r
             start, end = _extent(item)
-            out.append(Decl(scope, storage, type_name, name, dims, value, start, end, module_name))
+            out.append(Decl(scope, storage, type_name, name, (dims_node, value_node), start, end,
+                            module_name, doc))
     return out
 
 
@@ -481,7 +538,8 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
         numbers = {k: _with_text(doc, n) for k, n in numbers.items()}
         for n in numbers.values():
             if not abs(n.value) <= NUM_MAX:
-                raise doc.error(f"number {n.text} is out of range for a RAPID num (float32)",
+                raise doc.error(f"number {_short(n.written)} is out of range for a RAPID num "
+                                "(float32)",
                                 n.span.start)
         norm2 = sum(c * c for c in q)
         if norm2 == 0.0:
@@ -605,6 +663,9 @@ def _check_array_size(cf: ControllerFile, d: Decl) -> None:
     for depth, dim in enumerate(d.dims):
         if not isinstance(dim, Number):
             return            # a dimension named by a CONST: not evaluated here
+        if not abs(dim.value) <= DIM_MAX:
+            raise cf.document.error(f"{d.name}: array dimension {_short(_written(cf, dim))} is "
+                                    "not a size the controller accepts", _start_of(dim, d.start))
         for v in level:
             if not isinstance(v, list):
                 return
@@ -614,6 +675,17 @@ def _check_array_size(cf: ControllerFile, d: Decl) -> None:
                         f"{len(v)} elements")
                 return
         level = [x for v in level for x in v]
+
+
+DIM_MAX = 2 ** 31 - 1
+
+
+def _written(cf: ControllerFile, n: Number) -> str:
+    return n.text if n.text is not None else cf.document.text[_start_of(n, 0):n.span.end]
+
+
+def _short(s: str, limit: int = 30) -> str:
+    return s if len(s) <= limit else s[:limit] + "..."
 
 
 def _start_of(v, default: int) -> int:
