@@ -57,6 +57,23 @@ def quantile95_norm(cov: np.ndarray) -> np.ndarray:
     return np.sqrt(np.where(mean > 0, q, 0.0))
 
 
+def at_reach95(cov: np.ndarray, reach) -> np.ndarray:
+    """(B, 6, 6) covariances of (dt at the centroid, dθ) -> the 95 % displacement
+    (B,) of a point ``reach`` mm from the centroid, in the worst direction
+    (module docstring). Also used for the joint TCP model's frame block."""
+    ctt, ctq, cqq = cov[:, :3, :3], cov[:, :3, 3:], cov[:, 3:, 3:]
+    evals, evecs = np.linalg.eigh(cqq)
+    u = evecs[:, :, 0]                                           # least-doubt axis
+    r = np.asarray(reach, dtype=float).reshape(-1)[:, None, None]
+    worst = np.zeros(len(cov))
+    for sgn in (1.0, -1.0):
+        U = _skew(sgn * u)
+        cp = ctt - r * (ctq @ np.swapaxes(U, 1, 2)) - r * (U @ np.swapaxes(ctq, 1, 2)) \
+            + r * r * (U @ cqq @ np.swapaxes(U, 1, 2))
+        worst = np.maximum(worst, quantile95_norm(cp))
+    return worst
+
+
 def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str, np.ndarray]:
     """The gate's numbers for a batch of fits.
 
@@ -96,16 +113,8 @@ def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str,
     with np.errstate(all="ignore"):
         Hinv = np.linalg.pinv(H, hermitian=True)
         cov = (sigma ** 2)[:, None, None] * (Hinv @ G @ Hinv)
-    ctt, ctq, cqq = cov[:, :3, :3], cov[:, :3, 3:], cov[:, 3:, 3:]
-    evals, evecs = np.linalg.eigh(cqq)
-    u = evecs[:, :, 0]                                           # least-doubt axis
-    r = np.asarray(reach, dtype=float)[:, None, None]
-    worst = np.zeros(len(L))
-    for sgn in (1.0, -1.0):
-        U = _skew(sgn * u)
-        cp = ctt - r * (ctq @ np.swapaxes(U, 1, 2)) - r * (U @ np.swapaxes(ctq, 1, 2)) \
-            + r * r * (U @ cqq @ np.swapaxes(U, 1, 2))
-        worst = np.maximum(worst, quantile95_norm(cp))
+    ctt, cqq = cov[:, :3, :3], cov[:, 3:, 3:]
+    worst = at_reach95(cov, reach)
     C = np.einsum("bn,bni,bnj->bij", w, p, p) / wsum[:, None, None]
     spread = np.sqrt(np.clip(np.linalg.eigvalsh(C)[:, ::-1], 0.0, None))
     return {"sigma": sigma,

@@ -78,6 +78,8 @@ class Solution:
     uncertainty: dict[str, Any] | None = None
     reason: str | None = None    # why the dataset was rejected (None when accepted)
     precision: dict[str, Any] | None = None  # the determinacy gate's numbers (SPEC point 7)
+    tcp_solved: dict[str, Any] | None = None  # --tcp solve: x, y, z, std (ucsio.tcp_solve)
+    diagnosis: dict[str, Any] | None = None   # a rejection a TCP change explains (tcp_solve)
 
     def __post_init__(self) -> None:
         # a Solution built elsewhere (the batched solver) without a reason still says why
@@ -115,12 +117,16 @@ class Solution:
             "rms": self.rms, "mean": self.mean, "max": self.max,
             "accepted": self.accepted, "reason": self.reason, "warnings": self.warnings,
             "precision": self.precision,
+            "tcp": self.tcp_solved if self.tcp_solved is not None else
+            {"x": self.tcp[0], "y": self.tcp[1], "z": self.tcp[2], "solved": False},
             "settings": {"tcp": list(self.tcp), "tool": self.tool, "threshold": self.threshold,
                          "min_points": self.min_points, "no_exclusion": self.no_exclusion,
                          "source": self.source},
         }
         if self.uncertainty is not None:
             d["uncertainty"] = self.uncertainty
+        if self.diagnosis is not None:
+            d["diagnosis"] = self.diagnosis
         return d
 
 

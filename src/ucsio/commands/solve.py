@@ -19,9 +19,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="measurement file (see SPEC: Measurement files); or --laser and --robot")
     add_source_options(p)
     src = p.add_mutually_exclusive_group()
-    src.add_argument("--tcp", metavar="X,Y,Z", default=None,
+    src.add_argument("--tcp", metavar="X,Y,Z|solve", default=None,
                      help="reflector position in flange coordinates, mm (required unless "
-                          "--tool: 0,0,0 says the points are flange positions)")
+                          "--tool: 0,0,0 says the points are flange positions); 'solve' "
+                          "estimates it with the frame (needs varied flange orientations)")
     src.add_argument("--tool", metavar="FILE:NAME", default=None,
                      help="take the TCP from a robot-held tool in a controller file")
     p.add_argument("--threshold", type=float, default=defaults.THRESHOLD, metavar="MM",
@@ -128,18 +129,33 @@ def run(args) -> int:
         folder = os.path.dirname(os.path.abspath(args.output))
         if not os.path.isdir(folder):
             raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
+    solve_tcp = args.tcp is not None and args.tcp.strip().casefold() == "solve"
+    if solve_tcp and args.uncertainty:
+        raise UcsioError("--uncertainty with --tcp solve: not available; the solution's "
+                         "tcp.std and precision give the first-order doubt")
     if args.tool:
         tcp = tool_tcp(args.tool)
+    elif solve_tcp:
+        tcp = None
     elif args.tcp is not None:
         tcp = parse_tcp(args.tcp)
     else:
         raise UcsioError(solver.NO_TCP)
     solver.check_sigmas(args.sigma_laser, args.sigma_robot)
     meas, warnings = read_inputs(args)
-    sol = solver.solve(meas, tcp, threshold=args.threshold, min_points=args.min_points,
-                       exclude=args.exclude, no_exclusion=args.no_exclusion, tool=args.tool,
-                       reach=args.reach, sigma_laser=args.sigma_laser,
-                       sigma_robot=args.sigma_robot)
+    settings = dict(threshold=args.threshold, min_points=args.min_points,
+                    no_exclusion=args.no_exclusion, reach=args.reach,
+                    sigma_laser=args.sigma_laser, sigma_robot=args.sigma_robot)
+    if solve_tcp:
+        from ..tcp_solve import solve_joint
+        sol = solve_joint(meas, exclude=args.exclude, **settings)
+    else:
+        sol = solver.solve(meas, tcp, exclude=args.exclude, tool=args.tool, **settings)
+        if not sol.accepted:
+            from ..tcp_solve import diagnose
+            sol.diagnosis = diagnose(meas, sol, **settings)
+            if sol.diagnosis:
+                sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
     if args.uncertainty:
         solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
                                     args.sigma_robot, args.seed)
@@ -171,7 +187,7 @@ def render(sol) -> str:
     w, p, r = f.wpr
     lines = [f"measured frame (UCS in robot world) from {sol.source}",
              f"  tcp     {fmt(sol.tcp[0])}, {fmt(sol.tcp[1])}, {fmt(sol.tcp[2])}"
-             + (f"  (tool {sol.tool})" if sol.tool else ""),
+             + (f"  (tool {sol.tool})" if sol.tool else "") + _solved(sol),
              f"  x y z   {f.x:.3f}  {f.y:.3f}  {f.z:.3f}",
              f"  a b c   {a:.4f}  {b:.4f}  {c:.4f}   (KUKA)",
              f"  q       [{', '.join(f'{v:.6f}' for v in f.q)}]   (ABB)",
@@ -208,5 +224,18 @@ def render(sol) -> str:
                  for k in ("x", "y", "z", "angle")]
         lines.append(table(["", "unit", "std", "ci95", "analytical std"], urows, right={2, 4}))
     lines.extend(f"warning: {w}" for w in sol.warnings)
-    lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
+    if sol.diagnosis:                 # not the measurement's fault: no "measure again"
+        lines.append(f"REJECTED: {sol.reason}")
+    else:
+        lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
     return "\n".join(lines) + "\n"
+
+
+def _solved(sol) -> str:
+    """'  (solved with the frame, std 0.05 0.06 0.08 mm)' for --tcp solve."""
+    t = sol.tcp_solved
+    if not t:
+        return ""
+    std = t["std"]
+    return (f"  (solved with the frame; std {std['x']:.3f} {std['y']:.3f} {std['z']:.3f} mm, "
+            f"95 % within {t['at_95']:.3f} mm)")

@@ -1,0 +1,341 @@
+"""The TCP solved with the frame (SPEC: ``solve --tcp solve``).
+
+With one reflector on the flange whose offset x (flange coordinates) is not
+known, point i gives
+
+    R_Y l_i + t_Y = R_i x + t_i        (l_i laser, (R_i, t_i) flange pose i)
+
+with unknowns R_Y, t_Y (the UCS in robot world) and x: the hand-eye problem
+with 3D position data (Wu & Ren, "Finding the kinematic base frame of a robot
+by hand-eye calibration using 3D position data", IEEE T-ASE).
+
+1. Linear first solution. Writing l_i = c + B a_i (c the centroid, B the
+   principal axes along which the laser points spread: three, or two for a
+   flat fixture), R_Y l_i + t_Y = p + N a_i with p = R_Y c + t_Y and N = R_Y B,
+   so p + N a_i - R_i x = t_i is linear in (p, N, x): least squares gives x;
+   Horn's method (``horn``) then fits R_Y, t_Y to the robot points R_i x + t_i.
+2. Gauss-Newton on all nine unknowns (rotation updates exp([dθ]x) R_Y), from
+   that start, batched: the full fit and the n leave-one-out fits (each point's
+   weight zeroed, started from the full fit) are one array computation.
+3. Residuals, leave-one-out residuals and exclusion use the joint model, with
+   the rule of ``solve`` (while the largest leave-one-out residual exceeds the
+   threshold, exclude that point and refit; stop when every used point's
+   residual is within it; run to the end; ``--exclude``, ``--no-exclusion``);
+   acceptance by ``solve.acceptance``.
+4. The gates. The first-order covariance of the nine unknowns (per-axis
+   noise σ the larger of the stated √(σ_laser² + σ_robot²) and the residuals'
+   √(Σ|e_i|² / (3n − 9))) gives the TCP's 95 % doubt (``precision.
+   quantile95_norm`` of its 3x3 block): over the threshold, the dataset is
+   rejected, naming the flange orientations' spread and the spread that would
+   do (the doubt falls as 1/spread). The frame's 6x6 block gives ``precision``
+   as for a fixed TCP (``precision.at_reach95``).
+
+``diagnose`` is the other direction: a fixed-TCP solve rejected for its
+residuals, where the joint model explains them, names the TCP that fits.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable
+
+import numpy as np
+
+from . import defaults, horn
+from .errors import UcsioError
+from .frames import Pose
+
+MAX_ITERATIONS = 50
+STEP_MM = 1e-9              # a Gauss-Newton step this small (mm, rad) has converged
+STEP_ROT = 1e-12
+MIN_POINTS_JOINT = 4        # nine unknowns; 3 points fit exactly and show nothing
+#: principal spread (relative to the largest) below which the linear first
+#: solution treats the laser points as flat (the rotation's third column is
+#: then left to Horn's fit)
+FLAT_RATIO = 0.05
+
+
+# ---------------------------------------------------------------- the fit
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    x, y, z = np.moveaxis(v, -1, 0)
+    o = np.zeros_like(x)
+    return np.stack([np.stack([o, -z, y], -1), np.stack([z, o, -x], -1),
+                     np.stack([-y, x, o], -1)], axis=-2)
+
+
+def _exp(theta: np.ndarray) -> np.ndarray:
+    """(S, 3) rotation vectors -> (S, 3, 3) matrices, through the unit
+    quaternion (horn.quat_to_matrix: one place for that conversion)."""
+    angle = np.linalg.norm(theta, axis=-1)
+    half = 0.5 * angle
+    scale = np.where(angle > 1e-12, np.sin(half) / np.where(angle > 1e-12, angle, 1.0), 0.5)
+    q = np.concatenate([np.cos(half)[..., None], theta * scale[..., None]], axis=-1)
+    return horn.quat_to_matrix(q)
+
+
+def linear_tcp(laser: np.ndarray, Rf: np.ndarray, tf: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The linear first solution's x (3,) from points with weight w > 0."""
+    keep = w > 0
+    L, Rk, tk, wk = laser[keep], Rf[keep], tf[keep], w[keep]
+    c = (wk[:, None] * L).sum(axis=0) / wk.sum()
+    A = L - c
+    scatter = (wk[:, None, None] * A[:, :, None] * A[:, None, :]).sum(axis=0) / wk.sum()
+    evals, evecs = np.linalg.eigh(scatter)
+    spreads = np.sqrt(np.clip(evals, 0.0, None))[::-1]
+    basis = evecs[:, ::-1]
+    k = max(2, int(np.count_nonzero(spreads > FLAT_RATIO * spreads[0])))
+    a = A @ basis[:, :k]                                     # (m, k)
+    m = len(L)
+    D = np.zeros((m, 3, 6 + 3 * k))
+    D[:, :, :3] = np.eye(3)                                  # p
+    for j in range(k):                                       # N's columns
+        D[:, :, 3 + 3 * j:6 + 3 * j] = a[:, j, None, None] * np.eye(3)
+    D[:, :, 3 + 3 * k:] = -Rk                                # x
+    sw = np.sqrt(wk)[:, None, None]
+    sol, *_ = np.linalg.lstsq((sw * D).reshape(3 * m, -1), (sw[:, :, 0] * tk).reshape(-1),
+                              rcond=None)
+    return sol[-3:]
+
+
+def residuals(laser, Rf, tf, R, t, x) -> np.ndarray:
+    """e = (R_i x + t_i) - (R_Y l_i + t_Y): (S, n, 3) for (S,) parameter sets."""
+    return (np.einsum("nij,sj->sni", Rf, x) + tf[None]
+            - np.einsum("sij,nj->sni", R, laser) - t[:, None, :])
+
+
+def gauss_newton(laser, Rf, tf, W, R, t, x):
+    """Refine (S,) parameter sets, each against the points weighted by its
+    row of W (S, n): R (S, 3, 3), t (S, 3), x (S, 3). Returns R, t, x."""
+    R, t, x = R.copy(), t.copy(), x.copy()
+    S, n = W.shape
+    J = np.empty((S, n, 3, 9))
+    J[:, :, :, 3:6] = -np.eye(3)
+    J[:, :, :, 6:] = Rf[None]
+    for _ in range(MAX_ITERATIONS):
+        Rl = np.einsum("sij,nj->sni", R, laser)
+        e = residuals(laser, Rf, tf, R, t, x)
+        J[:, :, :, :3] = _skew(Rl)                           # d e / d theta = [R l]x
+        H = np.einsum("sn,snki,snkj->sij", W, J, J)
+        g = np.einsum("sn,snki,snk->si", W, J, e)
+        step = -np.einsum("sij,sj->si", np.linalg.pinv(H, hermitian=True), g)
+        R = _exp(step[:, :3]) @ R
+        t = t + step[:, 3:6]
+        x = x + step[:, 6:]
+        if np.all(np.abs(step[:, :3]) <= STEP_ROT) and np.all(np.abs(step[:, 3:]) <= STEP_MM):
+            break
+    return R, t, x
+
+
+def first_solution(laser, Rf, tf, w):
+    """Linear x, then Horn for R_Y, t_Y: (R, t, x) or a UcsioError."""
+    x = linear_tcp(laser, Rf, tf, w)
+    robot = Rf @ x + tf
+    fit = horn.horn_batch(laser[None], robot[None], w[None])
+    if not fit.ok[0]:
+        raise UcsioError(f"cannot fit a frame: {fit.reason(0)}")
+    return fit.R[0], fit.t[0], x
+
+
+# ---------------------------------------------------------------- the gate
+
+def covariance(laser, Rf, R, w, sigma: float) -> np.ndarray:
+    """First-order covariance (9, 9) of (dt at the centroid, dθ, dx): the
+    frame's first six in precision.py's coordinates."""
+    c = (w[:, None] * laser).sum(axis=0) / w.sum()
+    p = (laser - c) @ R.T
+    J = np.zeros((len(laser), 3, 9))
+    J[:, :, :3] = np.eye(3)
+    J[:, :, 3:6] = -_skew(p)
+    J[:, :, 6:] = -Rf
+    JtJ = np.einsum("nki,nkj->nij", J, J)
+    H = np.einsum("n,nij->ij", w, JtJ)
+    G = np.einsum("n,nij->ij", w * w, JtJ)
+    ev = np.linalg.eigvalsh(H)
+    if ev[0] <= 1e-12 * max(ev[-1], 1e-300):
+        return np.full((9, 9), np.inf)                       # some direction undetermined
+    Hinv = np.linalg.inv(H)
+    return sigma ** 2 * Hinv @ G @ Hinv
+
+
+def orientation_span(Rf: np.ndarray) -> float:
+    """The largest angle (deg) between two of the flange orientations."""
+    if len(Rf) < 2:
+        return 0.0
+    i, j = np.triu_indices(len(Rf), 1)
+    return float(np.max(horn.rotation_angle_deg(Rf[i], Rf[j])))
+
+
+def tcp_reason(doubt: float, span: float, threshold: float) -> str:
+    head = (f"the flange orientations do not vary enough to pin the TCP down: they span "
+            f"{span:.1f} deg (the largest angle between two used points)")
+    if not math.isfinite(doubt):
+        return (head + ", about fewer than two axes, so part of the TCP is not determined at "
+                "all; tilt the flange about two axes between points, or give the TCP "
+                "(--tcp X,Y,Z or --tool)")
+    need = span * doubt / threshold
+    return (head + f", which leaves the TCP known only to {doubt:.2f} mm (95 %), over the "
+            f"{threshold:g} mm threshold; turn the flange by about {math.ceil(need)} deg or more "
+            "between points (about at least two axes), or give the TCP (--tcp X,Y,Z or --tool)")
+
+
+# ---------------------------------------------------------------- the method
+
+def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
+                min_points: int = defaults.MIN_POINTS, exclude: Iterable[str] = (),
+                no_exclusion: bool = False, reach: float = defaults.REACH,
+                sigma_laser: float = defaults.SIGMA_LASER,
+                sigma_robot: float = defaults.SIGMA_ROBOT):
+    """The method with the TCP among the unknowns: a ``solve.Solution`` whose
+    ``tcp`` is the solved offset and ``tcp_solved`` its JSON (x, y, z,
+    solved, std, at_95)."""
+    from . import precision as prec
+    from .solve import PointResult, Solution, acceptance, check_sigmas
+
+    if not threshold > 0:
+        raise UcsioError(f"threshold must be positive, got {threshold}")
+    if min_points < 3:
+        raise UcsioError(f"min-points must be at least 3, got {min_points}")
+    check_sigmas(sigma_laser, sigma_robot)
+    path = measurement.path
+    names = list(measurement.names)
+    laser = np.asarray(measurement.laser, dtype=float)
+    Rf = np.asarray(measurement.flange, dtype=float)[:, :3, :3]
+    tf = np.asarray(measurement.flange, dtype=float)[:, :3, 3]
+    weights = np.asarray(measurement.weights, dtype=float)
+    n = len(names)
+    marks: list[str | None] = [None] * n
+    by_name = {nm.casefold(): k for k, nm in enumerate(names)}
+    for name in exclude:
+        k = by_name.get(name.strip().casefold())
+        if k is None:
+            raise UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(names)})",
+                             file=path)
+        marks[k] = "hand"
+    used = np.array([m is None for m in marks])
+    if used.sum() < MIN_POINTS_JOINT:
+        raise UcsioError(f"the TCP solved with the frame needs at least {MIN_POINTS_JOINT} "
+                         f"points, {int(used.sum())} given", file=path)
+
+    with np.errstate(all="ignore"):
+        try:
+            R, t, x = first_solution(laser, Rf, tf, weights * used)
+        except UcsioError as exc:
+            raise UcsioError(exc.message, file=path) from None
+        R, t, x = (a[0] for a in gauss_newton(laser, Rf, tf, (weights * used)[None], R[None],
+                                              t[None], x[None]))
+        first = True
+        while True:
+            resid = np.linalg.norm(residuals(laser, Rf, tf, R[None], t[None], x[None])[0], axis=1)
+            loo = _leave_one_out(laser, Rf, tf, weights, used, R, t, x)
+            n_used = int(used.sum())
+            if not first and resid[used].max() <= threshold:
+                break
+            first = False
+            if no_exclusion or n_used - 1 < MIN_POINTS_JOINT:
+                break
+            lu = np.where(used, loo, np.nan)
+            if not np.isfinite(lu).any() or np.nanmax(lu) <= threshold:
+                break
+            worst = int(np.nanargmax(lu))
+            used[worst] = False
+            marks[worst] = "auto"
+            R, t, x = (a[0] for a in gauss_newton(laser, Rf, tf, (weights * used)[None],
+                                                  R[None], t[None], x[None]))
+
+        e = residuals(laser, Rf, tf, R[None], t[None], x[None])[0]
+        r_used = resid[used]
+        n_used = int(used.sum())
+        accepted, reason = acceptance(n_used, float(r_used.max()), threshold=threshold,
+                                      min_points=min_points, no_exclusion=no_exclusion,
+                                      n_auto=marks.count("auto"))
+        # the gates, from the used points' geometry
+        stated = math.hypot(sigma_laser, sigma_robot)
+        sigma = max(stated, math.sqrt(float(np.sum(r_used ** 2)) / max(3 * n_used - 9, 1)))
+        wu = weights * used
+        cov = covariance(laser[used], Rf[used], R, wu[used], sigma)
+        finite = bool(np.all(np.isfinite(cov)))
+        doubt = float(prec.quantile95_norm(cov[None, 6:, 6:])[0]) if finite else math.inf
+        tcp_std = np.sqrt(np.clip(np.diag(cov)[6:], 0.0, None)) if finite else np.full(3, np.inf)
+        span = orientation_span(Rf[used])
+        lu = laser[used]
+        cen = (wu[used][:, None] * lu).sum(axis=0) / wu[used].sum()
+        C = np.einsum("n,ni,nj->ij", wu[used], lu - cen, lu - cen) / wu[used].sum()
+        spread = np.sqrt(np.clip(np.linalg.eigvalsh(C)[::-1], 0.0, None))
+        if finite:
+            at_reach = float(prec.at_reach95(cov[None, :6, :6], reach)[0])
+            at_centroid = float(prec.quantile95_norm(cov[None, :3, :3])[0])
+            angle_std = float(np.degrees(np.sqrt(max(np.trace(cov[3:6, 3:6]), 0.0))))
+        else:
+            at_reach = at_centroid = angle_std = math.inf
+    precision = {"sigma": sigma, "angle_std": angle_std, "reach": float(reach),
+                 "at_reach": at_reach, "at_centroid": at_centroid,
+                 "spread": [float(v) for v in spread], "tcp_at_95": doubt,
+                 "orientation_span": span}
+    if accepted and not doubt <= threshold:
+        accepted, reason = False, tcp_reason(doubt, span, threshold)
+    elif accepted and not at_reach <= threshold:
+        accepted, reason = False, prec.reason(at_reach, at_centroid, reach, threshold, sigma,
+                                              angle_std, spread)
+    points = [PointResult(name=names[k], residual=float(resid[k]),
+                          loo_residual=float(loo[k] if used[k] else resid[k]), used=bool(used[k]),
+                          dx=float(e[k, 0]), dy=float(e[k, 1]), dz=float(e[k, 2]),
+                          excluded_by=marks[k], weight=float(weights[k]),
+                          line=measurement.lines[k] if measurement.lines else None)
+              for k in range(n)]
+    pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
+    tcp = tuple(float(v) for v in x)
+    sol = Solution(pose=pose, points=points, n_points=n, n_used=n_used,
+                   rms=float(np.sqrt(np.mean(r_used ** 2))), mean=float(np.mean(r_used)),
+                   max=float(np.max(r_used)), accepted=accepted, reason=reason,
+                   tcp=tcp, threshold=float(threshold), min_points=int(min_points), source=path,
+                   no_exclusion=bool(no_exclusion), precision=precision)
+    sol.tcp_solved = {"x": tcp[0], "y": tcp[1], "z": tcp[2], "solved": True,
+                      "std": {k: float(v) for k, v in zip("xyz", tcp_std)}, "at_95": doubt}
+    return sol
+
+
+def _leave_one_out(laser, Rf, tf, weights, used, R, t, x) -> np.ndarray:
+    """(n,) each used point's distance to the joint fit of the other used
+    points (nan where fewer than MIN_POINTS_JOINT remain, or not used)."""
+    n = len(laser)
+    idx = np.flatnonzero(used)
+    out = np.full(n, np.nan)
+    if len(idx) - 1 < MIN_POINTS_JOINT:
+        return out
+    W = np.repeat((weights * used)[None], len(idx), axis=0)
+    W[np.arange(len(idx)), idx] = 0.0
+    S = len(idx)
+    Rs, ts, xs = gauss_newton(laser, Rf, tf, W, np.repeat(R[None], S, 0),
+                              np.repeat(t[None], S, 0), np.repeat(x[None], S, 0))
+    e = residuals(laser, Rf, tf, Rs, ts, xs)                 # (S, n, 3)
+    out[idx] = np.linalg.norm(e[np.arange(S), idx], axis=1)
+    return out
+
+
+# ---------------------------------------------------------------- diagnosis
+
+def diagnose(measurement, sol, **settings) -> dict[str, Any] | None:
+    """For a rejected fixed-TCP solve: the joint model's fit, where it is
+    accepted with the same settings and its TCP is more than the threshold
+    away from the one given (a wrong TCP, not a bad measurement), else None.
+    Returns ``tcp`` (x, y, z), ``distance`` (mm from the given TCP),
+    ``n_used``, ``rms``, ``max`` and ``message``."""
+    if sol.accepted or len(measurement.names) < MIN_POINTS_JOINT:
+        return None
+    hand = [p.name for p in sol.points if p.excluded_by == "hand"]
+    try:
+        joint = solve_joint(measurement, exclude=hand, **settings)
+    except UcsioError:
+        return None
+    if not joint.accepted:
+        return None
+    dist = math.dist(joint.tcp, sol.tcp)
+    if dist <= joint.threshold:
+        return None
+    x, y, z = joint.tcp
+    msg = (f"the residuals are what a wrong TCP gives: a TCP of {x:.3f}, {y:.3f}, {z:.3f} mm "
+           f"(flange), {dist:.2f} mm from the one given, fits {joint.n_used} of "
+           f"{joint.n_points} points within {joint.max:.3f} mm; check --tool / --tcp, or solve "
+           "the TCP with the frame (--tcp solve)")
+    return {"tcp": [x, y, z], "distance": dist, "n_used": joint.n_used, "rms": joint.rms,
+            "max": joint.max, "message": msg}

@@ -1,0 +1,218 @@
+"""The TCP solved with the frame (ucsio.tcp_solve, ``solve --tcp solve``),
+checked on synthetic truth: the UCS, the TCP and the flange poses are drawn
+with scipy, the measurement gets SPEC's default noise (0.015 mm laser, 0.05
+mm robot, per axis)."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
+
+from ucsio import tcp_solve
+from ucsio.cli import main
+from ucsio.errors import UcsioError
+from ucsio.horn import rotation_angle_deg
+from ucsio.measurement import Measurement
+from ucsio.solve import solve
+
+TCP = np.array([12.5, -30.25, 180.0])
+
+
+def cell(seed, spread, n=8, noise=True, tcp=TCP, axes="ZYX", flat=False):
+    """A measurement of n points: flange orientations a downward flange
+    turned by up to +-spread deg about each of ``axes``."""
+    rng = np.random.default_rng(seed)
+    R_ucs = Rotation.from_euler("ZYX", rng.uniform(-60, 60, 3), degrees=True)
+    t_ucs = rng.uniform(-1500, 1500, 3) + [2000, 0, 500]
+    laser = rng.uniform(0, 1, (n, 3)) * [1000, 700, 0 if flat else 250]
+    world = R_ucs.apply(laser) + t_ucs
+    flange = np.tile(np.eye(4), (n, 1, 1))
+    for i in range(n):
+        R = Rotation.from_euler("ZYX", [180, 0, 180], degrees=True) * Rotation.from_euler(
+            axes, rng.uniform(-spread, spread, len(axes)), degrees=True)
+        flange[i, :3, :3] = R.as_matrix()
+        flange[i, :3, 3] = world[i] - R.apply(tcp)
+    if noise:
+        laser = laser + rng.normal(0, 0.015, laser.shape)
+        flange[:, :3, 3] += rng.normal(0, 0.05, (n, 3))
+    meas = Measurement(path="synthetic", names=[f"P{i + 1}" for i in range(n)],
+                       lines=list(range(2, n + 2)), laser=laser, flange=flange,
+                       weights=np.ones(n), form="kuka", orientation=None)
+    return meas, R_ucs, t_ucs
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_thirty_degrees_of_spread_gives_the_tcp_within_half_a_millimetre(seed):
+    meas, R_ucs, t_ucs = cell(seed, 30)
+    joint = tcp_solve.solve_joint(meas)
+    fixed = solve(meas, TCP)                     # the TCP known exactly
+    assert joint.accepted and joint.n_used == 8
+    assert np.linalg.norm(np.array(joint.tcp) - TCP) < 0.5
+    # the frame as good as the fixed-TCP solve claims for itself: within its
+    # 95 % doubt at reach, and its orientation within 3 of its standard deviations
+    assert np.linalg.norm(np.array(joint.pose.t) - t_ucs) <= fixed.precision["at_reach"]
+    angle = float(rotation_angle_deg(np.array(joint.pose.matrix), R_ucs.as_matrix()))
+    assert angle <= 3 * fixed.precision["angle_std"]
+    d = joint.as_dict()["tcp"]
+    assert d["solved"] is True and set(d["std"]) == {"x", "y", "z"}
+    assert all(0 < d["std"][k] < 0.5 for k in "xyz")
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_two_degrees_is_rejected_never_returned_millimetres_off(seed):
+    meas, _, _ = cell(seed, 2)
+    joint = tcp_solve.solve_joint(meas)
+    assert not joint.accepted
+    assert "span" in joint.reason and "deg" in joint.reason and "turn the flange" in joint.reason
+    span = joint.precision["orientation_span"]
+    assert f"{span:.1f} deg" in joint.reason
+    assert joint.precision["tcp_at_95"] > joint.threshold
+
+
+def test_orientations_about_one_axis_leave_the_tcp_undetermined():
+    meas, _, _ = cell(1, 40, axes="Z")
+    joint = tcp_solve.solve_joint(meas)
+    assert not joint.accepted and "fewer than two axes" in joint.reason
+
+
+def test_exact_data_give_exact_answers():
+    meas, R_ucs, t_ucs = cell(5, 25, noise=False)
+    joint = tcp_solve.solve_joint(meas)
+    np.testing.assert_allclose(joint.tcp, TCP, atol=1e-6)
+    np.testing.assert_allclose(joint.pose.t, t_ucs, atol=1e-6)
+    np.testing.assert_allclose(np.array(joint.pose.matrix), R_ucs.as_matrix(), atol=1e-9)
+    assert joint.max < 1e-6
+
+
+@pytest.mark.parametrize("flat", [False, True])
+def test_linear_first_solution_is_exact_on_exact_data(flat):
+    """Also for a flat fixture (every point on one plane): the first solution
+    then uses the two directions the points spread in."""
+    meas, _, _ = cell(6, 20, noise=False, flat=flat)
+    x = tcp_solve.linear_tcp(meas.laser, meas.flange[:, :3, :3], meas.flange[:, :3, 3],
+                             np.ones(8))
+    np.testing.assert_allclose(x, TCP, atol=1e-6)
+    assert np.linalg.norm(np.array(tcp_solve.solve_joint(meas).tcp) - TCP) < 1e-6
+
+
+def test_leave_one_out_is_the_joint_fit_of_the_others():
+    meas, _, _ = cell(7, 30)
+    joint = tcp_solve.solve_joint(meas)
+    for k in (0, 4):
+        keep = np.arange(8) != k
+        sub = Measurement(path="s", names=[n for i, n in enumerate(meas.names) if keep[i]],
+                          lines=None, laser=meas.laser[keep], flange=meas.flange[keep],
+                          weights=np.ones(7), form="kuka", orientation=None)
+        other = tcp_solve.solve_joint(sub, no_exclusion=True)
+        R, t = np.array(other.pose.matrix), np.array(other.pose.t)
+        robot = meas.flange[k, :3, :3] @ np.array(other.tcp) + meas.flange[k, :3, 3]
+        assert joint.points[k].loo_residual == pytest.approx(
+            np.linalg.norm(robot - (R @ meas.laser[k] + t)), abs=1e-7)
+
+
+def test_an_outlier_is_excluded_with_the_joint_model():
+    meas, _, _ = cell(8, 30, n=9)
+    meas.laser[3] += [4.0, -3.0, 0.0]
+    joint = tcp_solve.solve_joint(meas)
+    assert [p.name for p in joint.points if not p.used] == ["P4"]
+    assert joint.points[3].excluded_by == "auto" and joint.accepted
+    assert np.linalg.norm(np.array(joint.tcp) - TCP) < 0.5
+    kept = tcp_solve.solve_joint(meas, no_exclusion=True)
+    assert kept.n_used == 9
+    hand = tcp_solve.solve_joint(meas, exclude=["p4"])
+    assert hand.points[3].excluded_by == "hand"
+
+
+motions = st.tuples(st.floats(-180, 180), st.floats(-89, 89), st.floats(-180, 180),
+                    st.floats(-3000, 3000), st.floats(-3000, 3000), st.floats(-3000, 3000))
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(world=motions, ucs=motions, seed=st.integers(0, 50))
+def test_rigid_motions_move_the_frame_and_leave_the_tcp(world, ucs, seed):
+    """Moving robot world by G and the laser's UCS by H: the frame becomes
+    G T H^-1, the TCP (in the flange) and every residual stay."""
+    meas, _, _ = cell(seed, 25)
+    base = tcp_solve.solve_joint(meas)
+
+    def rigid(m):
+        T = np.eye(4)
+        T[:3, :3] = Rotation.from_euler("ZYX", m[:3], degrees=True).as_matrix()
+        T[:3, 3] = m[3:]
+        return T
+
+    G, H = rigid(world), rigid(ucs)
+    moved = Measurement(path="m", names=meas.names, lines=meas.lines,
+                        laser=meas.laser @ H[:3, :3].T + H[:3, 3], flange=G @ meas.flange,
+                        weights=meas.weights, form="kuka", orientation=None)
+    sol = tcp_solve.solve_joint(moved)
+    T0 = np.eye(4)
+    T0[:3, :3], T0[:3, 3] = base.pose.matrix, base.pose.t
+    want = G @ T0 @ np.linalg.inv(H)
+    np.testing.assert_allclose(sol.tcp, base.tcp, atol=1e-6)
+    np.testing.assert_allclose(sol.pose.t, want[:3, 3], atol=1e-6)
+    np.testing.assert_allclose(np.array(sol.pose.matrix), want[:3, :3], atol=1e-9)
+    for p, q in zip(sol.points, base.points):
+        assert p.residual == pytest.approx(q.residual, abs=1e-7)
+        assert p.loo_residual == pytest.approx(q.loo_residual, abs=1e-7)
+    assert sol.accepted == base.accepted
+
+
+def test_too_few_points_for_nine_unknowns():
+    meas, _, _ = cell(9, 30, n=3)
+    with pytest.raises(UcsioError) as e:
+        tcp_solve.solve_joint(meas)
+    assert "at least 4" in e.value.message
+
+
+# ------------------------------------------------------------------ diagnosis, CLI
+
+def csv_of(meas, path):
+    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
+    for nm, l, T in zip(meas.names, meas.laser, meas.flange):
+        a = Rotation.from_matrix(T[:3, :3]).as_euler("ZYX", degrees=True)
+        rows.append(",".join([nm] + [repr(float(v)) for v in (*l, *T[:3, 3], *a)]))
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_a_wrong_tcp_is_diagnosed_not_blamed_on_the_measurement(tmp_path, capsys):
+    meas, _, _ = cell(3, 30)
+    wrong = solve(meas, TCP + [2.5, 0.0, 5.0])
+    assert not wrong.accepted
+    found = tcp_solve.diagnose(meas, wrong)
+    assert found is not None
+    np.testing.assert_allclose(found["tcp"], TCP, atol=0.5)
+    assert "--tcp solve" in found["message"] and "--tool" in found["message"]
+    # the right TCP is not diagnosed, and a bad measurement is not either
+    assert tcp_solve.diagnose(meas, solve(meas, TCP)) is None
+    csv = csv_of(meas, tmp_path / "m.csv")
+    assert main(["solve", str(csv), "--tcp", "15,-30.25,185", "--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["accepted"] is False and "--tcp solve" in out["reason"]
+    assert out["diagnosis"]["tcp"] == pytest.approx(list(TCP), abs=0.5)
+    assert main(["solve", str(csv), "--tcp", "15,-30.25,185"]) == 1
+    text = capsys.readouterr().out
+    assert "wrong TCP" in text and "measure again" not in text
+
+
+def test_cli_tcp_solve(tmp_path, capsys):
+    meas, _, _ = cell(4, 30)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    out = tmp_path / "sol.json"
+    assert main(["solve", str(csv), "--tcp", "solve", "--json", "-o", str(out)]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["tcp"]["solved"] is True
+    assert [got["tcp"][k] for k in "xyz"] == pytest.approx(list(TCP), abs=0.5)
+    assert json.loads(out.read_text())["tcp"] == got["tcp"]
+    assert main(["solve", str(csv), "--tcp", "solve"]) == 0
+    assert "solved with the frame" in capsys.readouterr().out
+    meas2, _, _ = cell(4, 2)
+    csv2 = csv_of(meas2, tmp_path / "m2.csv")
+    assert main(["solve", str(csv2), "--tcp", "solve"]) == 1
+    assert "turn the flange" in capsys.readouterr().out
+    assert main(["solve", str(csv), "--tcp", "solve", "--uncertainty", "100"]) == 2
