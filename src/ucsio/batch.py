@@ -45,7 +45,8 @@ from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is whe
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
 ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
-              "min_points", "tolerance", "exclude", "no_exclusion", "reach")
+              "min_points", "tolerance", "exclude", "no_exclusion", "reach", "points",
+              "station")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("measurement", "controller", "frame")
 
@@ -69,6 +70,8 @@ class Entry:
     exclude: tuple[str, ...] = ()
     no_exclusion: bool = False
     reach: float = REACH
+    points: bool = False              # also how far the frame's taught points move
+    station: str | None = None        # the report's roll-up (default: the controller's folder)
     problem: str | None = None        # why this entry cannot run (a bad value in its table)
 
 
@@ -133,8 +136,12 @@ def _check_values(table: dict, where: str, path: str) -> None:
             ex = [ex]
         if not isinstance(ex, list) or not all(isinstance(x, str) for x in ex):
             raise UcsioError(f"{where}: exclude must be a list of point names", file=path)
-    if "no_exclusion" in table and not isinstance(table["no_exclusion"], bool):
-        raise UcsioError(f"{where}: no_exclusion must be true or false", file=path)
+    for k in ("no_exclusion", "points"):
+        if k in table and not isinstance(table[k], bool):
+            raise UcsioError(f"{where}: {k} must be true or false", file=path)
+    if "station" in table and (not isinstance(table["station"], str)
+                               or not table["station"].strip()):
+        raise UcsioError(f"{where}: station must be a non-empty string", file=path)
 
 
 def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
@@ -171,7 +178,8 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  min_points=merged.get("min_points", MIN_POINTS),
                  tolerance=float(merged.get("tolerance", DEFAULT_TOLERANCE)),
                  exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False),
-                 reach=float(merged.get("reach", REACH)))
+                 reach=float(merged.get("reach", REACH)),
+                 points=merged.get("points", False), station=merged.get("station"))
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -182,9 +190,11 @@ def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
         return _resolve(base, v) if isinstance(v, str) and v.strip() else None
 
     frame = raw.get("frame", defaults.get("frame"))
+    station = raw.get("station", defaults.get("station"))
     return Entry(index=i, name=name, measurement=path_of("measurement"),
                  controller=path_of("controller"),
                  frame=frame if isinstance(frame, str) else None, tcp=None, tool=None,
+                 station=station if isinstance(station, str) and station.strip() else None,
                  problem=problem)
 
 
@@ -261,6 +271,8 @@ class EntryResult:
     patch_error: str | None = None    # why no patched copy was written
     uncertainty_axes: str | None = None   # "world", or "uframe" (an ABB object frame)
     uncertainty_error: str | None = None  # why --uncertainty gave nothing for this entry
+    points_moved: dict | None = None      # points = true: count, max, mean, worst (taught points)
+    points_error: str | None = None       # why they could not be placed
 
     @property
     def accepted(self) -> bool:
@@ -289,6 +301,16 @@ class EntryResult:
         return getattr(s, "reason", None) or "the dataset was rejected"
 
     @property
+    def station(self) -> str | None:
+        """The entry's ``station``, else its controller's folder."""
+        en = self.entry
+        if en.station:
+            return en.station
+        if en.controller:
+            return os.path.basename(os.path.dirname(en.controller)) or None
+        return None
+
+    @property
     def e(self) -> float | None:
         return None if self.solution is None or self.error else self.solution.mean
 
@@ -312,7 +334,7 @@ class EntryResult:
             d["error"] = self.error
             d["stage"] = self.stage
         d.update({"measurement": en.measurement, "controller": en.controller,
-                  "frame_name": en.frame, "vendor": self.vendor,
+                  "frame_name": en.frame, "station": self.station, "vendor": self.vendor,
                   "tcp": list(en.tcp) if en.tcp is not None else
                   (list(self.solution.tcp) if self.solution is not None else None),
                   "tool": en.tool, "threshold": en.threshold, "min_points": en.min_points,
@@ -336,6 +358,10 @@ class EntryResult:
                 d["uncertainty_axes"] = self.uncertainty_axes or "world"
         if self.uncertainty_error is not None:
             d["uncertainty_error"] = self.uncertainty_error
+        if self.points_moved is not None:
+            d["points_moved"] = self.points_moved
+        if self.points_error is not None:
+            d["points_error"] = self.points_error
         if self.patched is not None:
             d["patched"] = self.patched
         if self.patch_error is not None:
@@ -523,6 +549,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                 progress("uncertainty", j + 1, len(todo))
     t4 = time.perf_counter()
 
+    _taught_points(results, frames)
+
     if patch_dir is not None:
         write_patches(results, frames, cache, patch_dir, manifest)
     t5 = time.perf_counter()
@@ -532,6 +560,26 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                                 "uncertainty": t4 - t3, "patch": t5 - t4,
                                 "controllers": len(cache.controllers),
                                 "measurements": len(cache.measurements)})
+
+
+def _taught_points(results: list[EntryResult], frames: dict) -> None:
+    """``points = true``: how far the taught points of each accepted entry's
+    frame move (ucsio.taught); each frame's points are found once per run."""
+    from .taught import find_points, points_moved
+
+    found: dict[int, Any] = {}
+    for k, r in enumerate(results):
+        if not (r.entry.points and r.accepted and k in frames):
+            continue
+        cf, frame = frames[k]
+        try:
+            if id(frame) not in found:
+                found[id(frame)] = find_points(cf, frame)
+            got = points_moved(cf, frame, r.solution.pose, found[id(frame)])
+        except UcsioError as exc:
+            r.points_error = str(exc)
+            continue
+        r.points_moved = dict(got["points_moved"], warnings=got["points_warnings"])
 
 
 def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch_dir: str,
@@ -704,7 +752,8 @@ CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "d
                "da", "db", "dc", "angle", "dist", "x", "y", "z", "a", "b", "c",
                "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "at_reach",
                "angle_std", "sigma", "tolerance", "measurement", "controller", "frame", "error",
-               "patched", "patch_error", "reason")
+               "patched", "patch_error", "reason", "station", "points_count", "points_max",
+               "points_mean", "points_worst")
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -718,7 +767,11 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
                "tolerance": r.entry.tolerance, "measurement": r.entry.measurement,
                "controller": r.entry.controller, "frame": r.entry.frame, "error": r.error or "",
                "patched": r.patched, "patch_error": r.patch_error or "",
-               "reason": r.reason or ""}
+               "reason": r.reason or "", "station": r.station}
+        pm = r.points_moved
+        if pm is not None:
+            row.update({"points_count": pm["count"], "points_max": pm["max"],
+                        "points_mean": pm["mean"], "points_worst": pm["worst"]})
         for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist"):
             row[k] = d.get(k)
         if s is not None and s.precision:

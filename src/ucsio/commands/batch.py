@@ -147,6 +147,8 @@ def render(result, patching: bool | None = None) -> str:
 
     if patching is None:
         patching = any(r.patched is not None or r.patch_error is not None for r in result.entries)
+    # points = true in the manifest: the taught point that moves most, per entry
+    points = any(r.entry.points for r in result.entries)
     rows = []
     for r in result.entries:
         d = r.delta or {}
@@ -154,14 +156,21 @@ def render(result, patching: bool | None = None) -> str:
                fmt(r.e), fmt(r.dt_mean), fmt(r.group),
                fmt(d.get("dx")), fmt(d.get("dy")), fmt(d.get("dz")),
                fmt(d.get("angle"), 4)]
+        if points:
+            pm = r.points_moved or {}
+            row.append(f"{fmt(pm.get('max'))} ({pm['count']})" if pm.get("count") else
+                       "none" if pm else "-")
         if patching:
             row.append("REFUSED" if r.patch_error is not None else
                        "written" if r.patched is not None else "-")
         rows.append(row)
     headers = ["entry", "status", "used", "e", "dt_mean", "group", "dx", "dy", "dz", "angle"]
+    if points:
+        headers.append("points moved max (n)")
     if patching:
         headers.append("patch")
-    out = [table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9})]
+    out = [table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9, 10} if points else
+                 {2, 3, 4, 5, 6, 7, 8, 9})]
     rejected = [r for r in result.entries if r.status == "rejected"]
     if rejected:
         out.append("")
@@ -177,6 +186,11 @@ def render(result, patching: bool | None = None) -> str:
         out.append("")
         out.append("patch errors (no patched copy written for these):")
         out.extend(f"  {r.entry.name}: {r.patch_error}" for r in refused)
+    unplaced = [r for r in result.entries if r.points_error is not None]
+    if unplaced:
+        out.append("")
+        out.append("taught points not placed:")
+        out.extend(f"  {r.entry.name}: {r.points_error}" for r in unplaced)
     unc = [r for r in result.entries if getattr(r, "uncertainty_error", None) is not None]
     if unc:
         out.append("")
