@@ -1,30 +1,40 @@
-"""The HTML report of ``ucsio batch --report FILE.html``.
+"""The HTML report of ``ucsio batch --report FILE.html``, for a plant manager.
 
 One self-contained file: inline CSS, charts drawn here as inline SVG (no
-matplotlib, no scripts, nothing fetched from the network). It holds:
+matplotlib, no scripts, nothing fetched from the network). Read top down:
 
-- the summary (counts, success rate) and the table of the five groups;
-- a histogram of dt_mean over the accepted entries with the group
-  boundaries (10, 25, 50, 100 mm) drawn; each group gets the same width on
-  the axis so group 1 (0-10 mm) is as readable as group 5;
-- per-entry residual bars (mean residual e, and the largest residual of the
-  used points, against the outlier threshold);
-- per entry: the diff, the measured frame, the points with their residuals
-  and leave-one-out residuals, the error, and with --patch-dir the patched
-  copy or why it was refused.
+1. what the run was (when, which ucsio, which manifest, tolerance,
+   threshold, min points) in one line;
+2. **what needs action**: every entry over tolerance, rejected or failed and
+   every patched copy that was not written, each with its reason in plain
+   words and what to do next (or a green line saying nothing does);
+3. the summary cards, the roll-up per station (an entry's ``station``, else
+   its controller's folder) and the five groups of SPEC's Table 4;
+4. the charts, each with a legend and labelled axes: dt_mean per entry on
+   an axis where every group is equally wide, and each entry's measurement
+   error e against the outlier threshold, on a log axis so that passing bars,
+   the threshold and gross outliers all read;
+5. the table of entries (with how far taught points move, where asked) and
+   each entry's details: the diff, its points and their residuals (a chart
+   with a legend), the determinacy numbers, links to its patched copy.
+
+Symbols keep their plain words beside them: dt_mean is the average shift of
+the frame along x, y and z; e the mean distance of the used points from the
+fitted frame.
 
 Any value may be missing or null (an entry that failed after it was solved
 has points and residuals but no e; a hand-edited JSON may lack anything): a
 missing number is drawn as "–", never an error.
 
 Numbers for machines: the whole ``--json`` document is embedded as
-``<script type="application/json" id="ucsio-data">``; the summary cells carry
-``data-key``/``data-value`` and every entry row ``data-name``, ``data-status``,
-``data-e``, ``data-dt-mean``, ``data-group``, ``data-pass`` (and a rejected
-entry's ``data-reason``: why its dataset was rejected).
+``<script type="application/json" id="ucsio-data">`` (data, never run); the
+summary cells carry ``data-key``/``data-value`` and every entry row
+``data-name``, ``data-status``, ``data-e``, ``data-dt-mean``, ``data-group``,
+``data-pass`` (and a rejected entry's ``data-reason``).
 """
 from __future__ import annotations
 
+import datetime as _dt
 import html
 import json
 import math
@@ -36,41 +46,76 @@ from .diff import GROUP_BOUNDS
 from .output import fmt
 
 GROUP_COLORS = ("#2e7d32", "#7cb342", "#f9a825", "#ef6c00", "#c62828")
+GROUP_WORDS = ("small", "moderate", "large", "very large", "extreme")
 STATUS_CLASS = {"pass": "ok", "over tolerance": "warn", "rejected": "bad", "error": "err"}
+STATUS_WORDS = {"pass": "passed", "over tolerance": "over tolerance", "rejected": "rejected",
+                "error": "failed"}
+BAR = "#1f6feb"
+BAD = "#c62828"
+E_WORDS = "mean distance of the used points from the fitted frame"
+DT_WORDS = "average shift of the frame along x, y and z"
 
 CSS = """
 :root { --fg:#1d2329; --muted:#5f6b76; --line:#d9dee3; --bg:#ffffff; --panel:#f6f8fa; }
 * { box-sizing: border-box; }
 body { font: 14px/1.45 -apple-system, "Segoe UI", Roboto, "Helvetica Neue", Arial, sans-serif;
-       color: var(--fg); background: var(--bg); margin: 0; padding: 24px 32px; max-width: 1200px; }
+       color: var(--fg); background: var(--bg); margin: 0 auto; padding: 20px 32px;
+       max-width: 1200px; }
 h1 { font-size: 22px; margin: 0 0 4px; }
-h2 { font-size: 17px; margin: 28px 0 10px; border-bottom: 1px solid var(--line); padding-bottom: 4px; }
-.sub { color: var(--muted); margin-bottom: 18px; word-break: break-all; }
+h2 { font-size: 17px; margin: 26px 0 10px; border-bottom: 1px solid var(--line);
+     padding-bottom: 4px; }
+#meta { color: var(--muted); font-size: 12.5px; margin: 0 0 14px; display: flex;
+        flex-wrap: wrap; gap: 2px 18px; }
+#meta b { color: var(--fg); font-weight: 600; }
+#meta code { word-break: break-all; }
+#actions { border: 2px solid #b26a00; border-radius: 8px; padding: 10px 16px 6px;
+           background: #fff8ec; }
+#actions.clear { border-color: #2e7d32; background: #eef7ef; }
+#actions h2 { margin: 0 0 6px; border: 0; padding: 0; }
+#actions h3 { font-size: 15px; margin: 10px 0 2px; }
+#actions ol { margin: 2px 0 6px; padding-left: 26px; }
+#actions li { margin: 0 0 3px; }
+#actions li .todo { margin-left: 6px; }
+#actions .todo { color: #1d2329; }
+#actions p.todo { margin: 0 0 2px; }
+#actions .todo::before { content: "What to do: "; font-weight: 600; }
 .cards { display: flex; flex-wrap: wrap; gap: 12px; }
 .card { background: var(--panel); border: 1px solid var(--line); border-radius: 6px;
-        padding: 10px 16px; min-width: 120px; }
-.card .v { font-size: 24px; font-weight: 600; }
-.card .k { color: var(--muted); font-size: 12px; text-transform: uppercase; letter-spacing: .04em; }
+        padding: 8px 14px; min-width: 120px; }
+.card .v { font-size: 22px; font-weight: 600; }
+.card .k { color: var(--muted); font-size: 12px; }
 .card.ok .v { color: #2e7d32; } .card.warn .v { color: #b26a00; }
 .card.bad .v { color: #c62828; } .card.err .v { color: #6a1b9a; }
 table { border-collapse: collapse; font-variant-numeric: tabular-nums; }
-th, td { padding: 3px 10px; border-bottom: 1px solid var(--line); text-align: left; }
+th, td { padding: 3px 10px; border-bottom: 1px solid var(--line); text-align: left;
+         vertical-align: top; }
 th { background: var(--panel); font-weight: 600; }
+th small { display: block; font-weight: 400; color: var(--muted); font-size: 11px; }
 td.n, th.n { text-align: right; }
-.swatch { display: inline-block; width: 10px; height: 10px; border-radius: 2px; margin-right: 6px; }
+.swatch { display: inline-block; width: 12px; height: 12px; border-radius: 2px;
+          margin-right: 6px; vertical-align: -1px; }
+.swatch.line { height: 0; border-top: 2px dashed #1d2329; border-radius: 0; width: 18px;
+               vertical-align: 3px; }
+.swatch.line.red { border-top-color: #c62828; }
+.swatch.outline { background: none; border: 1.5px solid #1f6feb; }
 .pill { display: inline-block; padding: 0 8px; border-radius: 9px; font-size: 12px; color: #fff; }
 .pill.ok { background: #2e7d32; } .pill.warn { background: #b26a00; }
 .pill.bad { background: #c62828; } .pill.err { background: #6a1b9a; }
-.chart { background: var(--panel); border: 1px solid var(--line); border-radius: 6px; padding: 8px; }
-.chart svg { display: block; width: 100%; height: auto; }
+figure.chart { background: var(--panel); border: 1px solid var(--line); border-radius: 6px;
+               padding: 8px; margin: 0; }
+figure.chart svg { display: block; width: 100%; height: auto; }
+figure.chart.small { display: inline-block; align-self: flex-start; }
+figure.chart.small svg { width: auto; }
+.legend { font-size: 12px; color: var(--fg); display: flex; flex-wrap: wrap; gap: 4px 16px;
+          margin: 6px 4px 0; }
 .note { color: var(--muted); font-size: 12px; margin: 6px 0 0; }
 details { border-bottom: 1px solid var(--line); padding: 4px 0; }
 details summary { cursor: pointer; }
-details .body { display: flex; flex-wrap: wrap; gap: 24px; padding: 8px 0 12px 18px; }
+details .body { display: flex; flex-wrap: wrap; gap: 18px 24px; padding: 8px 0 12px 18px; }
 .err-msg { color: #6a1b9a; font-family: ui-monospace, Consolas, monospace; font-size: 12px; }
 code, .mono { font-family: ui-monospace, Consolas, monospace; font-size: 12px; }
 svg text { font-family: -apple-system, "Segoe UI", Roboto, Arial, sans-serif; }
-@media print { details { break-inside: avoid; } }
+@media print { details { break-inside: avoid; } #actions { break-inside: avoid; } }
 """
 
 
@@ -106,6 +151,23 @@ def _attr(v: Any) -> str:
     return repr(v) if isinstance(v, float) else str(v)
 
 
+def _dict(v: Any) -> dict:
+    return v if isinstance(v, dict) else {}
+
+
+def _legend(items: Sequence[tuple[str, str]]) -> str:
+    """An HTML legend: (swatch HTML, label) pairs."""
+    return ('<figcaption class="legend">'
+            + "".join(f'<span class="item">{sw}{_e(label)}</span>' for sw, label in items)
+            + "</figcaption>")
+
+
+def _swatch(color: str, cls: str = "") -> str:
+    style = f"background:{color}" if "line" not in cls and "outline" not in cls else \
+        (f"border-color:{color}" if color else "")
+    return f'<span class="swatch {cls}" style="{style}"></span>'
+
+
 # ---------------------------------------------------------------- charts
 
 def _group_axis(dt: float, top: float) -> float:
@@ -121,7 +183,7 @@ def _group_axis(dt: float, top: float) -> float:
 def histogram_svg(dts: Sequence[tuple[float, int]], bins_per_group: int = 5,
                   tolerance: float | None = None) -> str:
     """dt_mean histogram. ``dts``: (dt_mean, group) of the accepted entries."""
-    W, H, left, right, top_pad, bottom = 1100, 310, 50, 20, 30, 52
+    W, H, left, right, top_pad, bottom = 1100, 300, 56, 20, 30, 50
     top = max([100.0 * 1.5] + [d for d, _ in dts])
     top = float(math.ceil(top / 50.0) * 50.0)
     n_bins = bins_per_group * 5
@@ -141,110 +203,149 @@ def histogram_svg(dts: Sequence[tuple[float, int]], bins_per_group: int = 5,
         return top_pad + ph * (1 - c / ymax)
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H}" role="img" '
-           f'aria-label="histogram of dt_mean">']
+           f'aria-label="number of entries by dt_mean">']
     for g in range(5):   # group bands
         out.append(f'<rect x="{X(g):.1f}" y="{top_pad}" width="{pw / 5:.1f}" height="{ph}" '
                    f'fill="{GROUP_COLORS[g]}" opacity="0.07"/>')
         out.append(f'<text x="{X(g + 0.5):.1f}" y="{top_pad - 9}" text-anchor="middle" '
-                   f'font-size="12" fill="{GROUP_COLORS[g]}" font-weight="600">group {g + 1}</text>')
+                   f'font-size="13" fill="{GROUP_COLORS[g]}" font-weight="600">group {g + 1}</text>')
     for k in range(0, ymax + 1, ystep):
         y = Y(k)
         out.append(f'<line x1="{left}" x2="{W - right}" y1="{y:.1f}" y2="{y:.1f}" stroke="#d9dee3"/>')
-        out.append(f'<text x="{left - 6}" y="{y + 4:.1f}" text-anchor="end" font-size="11" '
-                   f'fill="#5f6b76">{k}</text>')
+        out.append(f'<text x="{left - 8}" y="{y + 4:.1f}" text-anchor="end" font-size="13" '
+                   f'fill="#1d2329">{k}</text>')
     bw = pw / n_bins
     for b, c in enumerate(counts):
         if not c:
             continue
         g = b // bins_per_group
-        out.append(f'<rect class="bin" data-bin="{b}" data-count="{c}" x="{X(b / bins_per_group) + 1:.1f}" '
-                   f'y="{Y(c):.1f}" width="{bw - 2:.1f}" height="{Y(0) - Y(c):.1f}" '
-                   f'fill="{GROUP_COLORS[g]}"/>')
+        out.append(f'<rect class="bin" data-bin="{b}" data-count="{c}" '
+                   f'x="{X(b / bins_per_group) + 1:.1f}" y="{Y(c):.1f}" width="{bw - 2:.1f}" '
+                   f'height="{Y(0) - Y(c):.1f}" fill="{GROUP_COLORS[g]}"><title>{c} '
+                   f'entr{"y" if c == 1 else "ies"}</title></rect>')
         out.append(f'<text x="{X((b + 0.5) / bins_per_group):.1f}" y="{Y(c) - 3:.1f}" '
-                   f'text-anchor="middle" font-size="10" fill="#1d2329">{c}</text>')
+                   f'text-anchor="middle" font-size="12" fill="#1d2329">{c}</text>')
     for k, bound in enumerate(GROUP_BOUNDS, 1):   # the group boundaries
         x = X(k)
         out.append(f'<line class="boundary" data-mm="{bound:g}" x1="{x:.1f}" x2="{x:.1f}" '
                    f'y1="{top_pad}" y2="{Y(0):.1f}" stroke="#1d2329" stroke-dasharray="5 4"/>')
-    if tolerance is not None and tolerance not in GROUP_BOUNDS and tolerance < top:
+    if tolerance is not None and tolerance < top:
         x = X(_group_axis(tolerance, top))
-        out.append(f'<line x1="{x:.1f}" x2="{x:.1f}" y1="{top_pad}" y2="{Y(0):.1f}" '
-                   f'stroke="#c62828" stroke-width="2"/>')
-        out.append(f'<text x="{x + 4:.1f}" y="{top_pad + 28}" font-size="11" fill="#c62828">'
-                   f'tolerance {tolerance:g}</text>')
+        out.append(f'<line class="tolerance" data-mm="{tolerance:g}" x1="{x:.1f}" x2="{x:.1f}" '
+                   f'y1="{top_pad}" y2="{Y(0):.1f}" stroke="{BAD}" stroke-width="2.5"/>')
     out.append(f'<line x1="{left}" x2="{W - right}" y1="{Y(0):.1f}" y2="{Y(0):.1f}" stroke="#1d2329"/>')
     for k, mm in enumerate((0.0, *GROUP_BOUNDS, top)):
-        out.append(f'<text x="{X(k):.1f}" y="{Y(0) + 16:.1f}" text-anchor="middle" font-size="11" '
+        out.append(f'<text x="{X(k):.1f}" y="{Y(0) + 17:.1f}" text-anchor="middle" font-size="13" '
                    f'fill="#1d2329">{mm:g}</text>')
-    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 8}" text-anchor="middle" font-size="12" '
-               f'fill="#5f6b76">dt_mean (mm) — each group one fifth of the axis, linear inside it'
+    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 8}" text-anchor="middle" font-size="13" '
+               f'fill="#1d2329">dt_mean, mm ({DT_WORDS}); each group one fifth of the axis'
                f'</text>')
-    out.append(f'<text x="14" y="{top_pad + ph / 2:.1f}" font-size="12" fill="#5f6b76" '
-               f'transform="rotate(-90 14 {top_pad + ph / 2:.1f})" text-anchor="middle">entries</text>')
+    out.append(f'<text x="16" y="{top_pad + ph / 2:.1f}" font-size="13" fill="#1d2329" '
+               f'transform="rotate(-90 16 {top_pad + ph / 2:.1f})" text-anchor="middle">'
+               f'number of entries</text>')
     out.append("</svg>")
     return "".join(out)
 
 
+def histogram_legend(tolerance: float | None) -> str:
+    items = [(_swatch(GROUP_COLORS[g]), f"group {g + 1}: {_group_range(g + 1)} "
+              f"({GROUP_WORDS[g]})") for g in range(5)]
+    items.append((_swatch("#1d2329", "line"), "group boundary"))
+    if tolerance is not None:
+        items.append((_swatch(BAD, "line red"), f"tolerance {tolerance:g} mm: a frame passes "
+                      "below it"))
+    return _legend(items)
+
+
+def _group_range(g: int) -> str:
+    lo = 0.0 if g == 1 else GROUP_BOUNDS[g - 2]
+    return f"{lo:g}–{GROUP_BOUNDS[g - 1]:g} mm" if g <= len(GROUP_BOUNDS) else f"≥ {lo:g} mm"
+
+
+def residual_axis(values: Sequence[float], threshold: float | None) -> tuple[float, float]:
+    """(bottom, top) of the residual chart's logarithmic axis, whole decades.
+    A linear axis drawn to the worst entry (a gross outlier of several mm)
+    leaves every passing bar (a few hundredths of a mm) a flat line; on a
+    log axis the passing bars, the threshold and the outliers all read."""
+    vals = [v for v in values if v is not None and v > 0]
+    lo = min(vals + ([threshold] if threshold else []) + [1.0])
+    hi = max(vals + ([threshold] if threshold else []) + [0.01])
+    bottom = 10.0 ** math.floor(math.log10(max(lo, 1e-4)))
+    top = 10.0 ** math.ceil(math.log10(hi * 1.05))
+    if top <= bottom:
+        top = bottom * 10
+    return bottom, top
+
+
 def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
-    """One bar per solved entry: e (mean residual of the used points, solid)
-    in front of the largest used residual (light)."""
-    W, H, left, right, top_pad, bottom = 1100, 240, 50, 20, 16, 40
+    """One bar per solved entry: e (solid) in front of the largest used
+    residual (light); red for a rejected dataset; on a logarithmic axis
+    (``residual_axis``). The threshold's label sits in the right margin,
+    beside the plot, never over the bars."""
+    W, H, left, right, top_pad, bottom_pad = 1100, 260, 64, 120, 14, 44
     n = max(len(rows), 1)
     rows = [dict(r, e=_num(r.get("e")), max=_num(r.get("max"))) for r in rows]
     vals = [r["max"] for r in rows if r["max"] is not None] + \
            [r["e"] for r in rows if r["e"] is not None]
-    ymax = max(vals + [0.1])
-    if threshold is not None and threshold < 1.5 * ymax:
-        ymax = max(ymax, threshold * 1.05)
-    step = _nice_step(ymax / 5)
-    ymax = step * math.ceil(ymax / step)
-    pw, ph = W - left - right, H - top_pad - bottom
+    lo, hi = residual_axis(vals, threshold)
+    pw, ph = W - left - right, H - top_pad - bottom_pad
+    span = math.log10(hi) - math.log10(lo)
 
     def Y(v):
-        return top_pad + ph * (1 - min(v, ymax) / ymax)
+        v = min(max(v, lo), hi)
+        return top_pad + ph * (1 - (math.log10(v) - math.log10(lo)) / span)
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H}" role="img" '
-           f'aria-label="residuals per entry">']
-    k = 0.0
-    while k <= ymax + 1e-12:
-        y = Y(k)
-        out.append(f'<line x1="{left}" x2="{W - right}" y1="{y:.1f}" y2="{y:.1f}" stroke="#d9dee3"/>')
-        out.append(f'<text x="{left - 6}" y="{y + 4:.1f}" text-anchor="end" font-size="11" '
-                   f'fill="#5f6b76">{k:g}</text>')
-        k = round(k + step, 10)
+           f'aria-label="measurement error e per entry">']
+    decade = lo
+    while decade <= hi * 1.0001:
+        for m in (1, 2, 5):
+            v = decade * m
+            if v > hi * 1.0001:
+                break
+            y = Y(v)
+            major = m == 1
+            out.append(f'<line x1="{left}" x2="{W - right}" y1="{y:.1f}" y2="{y:.1f}" '
+                       f'stroke="{"#c4cbd2" if major else "#e6e9ec"}"/>')
+            out.append(f'<text x="{left - 8}" y="{y + 4:.1f}" text-anchor="end" '
+                       f'font-size="{13 if major else 11}" fill="#1d2329">{v:g}</text>')
+        decade *= 10
     bw = pw / n
+    base = Y(lo)
     for i, r in enumerate(rows):
         x = left + i * bw
-        color = "#c62828" if r.get("status") == "rejected" else "#1f6feb"
+        color = BAD if r.get("status") == "rejected" else BAR
         if r.get("max") is not None:
             out.append(f'<rect x="{x + bw * 0.1:.2f}" y="{Y(r["max"]):.1f}" width="{bw * 0.8:.2f}" '
-                       f'height="{Y(0) - Y(r["max"]):.1f}" fill="{color}" opacity="0.25"/>')
+                       f'height="{base - Y(r["max"]):.1f}" fill="{color}" opacity="0.28"/>')
         if r.get("e") is not None:
             out.append(f'<rect class="ebar" data-name="{_e(r.get("name"))}" data-e="{_attr(r["e"])}" '
                        f'x="{x + bw * 0.1:.2f}" y="{Y(r["e"]):.1f}" width="{bw * 0.8:.2f}" '
-                       f'height="{Y(0) - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r.get("name"))}: '
+                       f'height="{base - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r.get("name"))}: '
                        f'e {r["e"]:.3f} mm, max {_f(r.get("max"))} mm</title></rect>')
-    if threshold is not None and threshold <= ymax:
+    if threshold is not None:
         y = Y(threshold)
-        out.append(f'<line x1="{left}" x2="{W - right}" y1="{y:.1f}" y2="{y:.1f}" stroke="#c62828" '
-                   f'stroke-dasharray="6 4"/><text x="{W - right - 4}" y="{y - 4:.1f}" '
-                   f'text-anchor="end" font-size="11" fill="#c62828">threshold {threshold:g} mm</text>')
-    out.append(f'<line x1="{left}" x2="{W - right}" y1="{Y(0):.1f}" y2="{Y(0):.1f}" stroke="#1d2329"/>')
-    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 12}" text-anchor="middle" font-size="12" '
-               f'fill="#5f6b76">entries in manifest order ({len(rows)} solved) — solid: e (mean '
-               f'residual of used points), light: largest used residual, red: rejected</text>')
+        out.append(f'<line class="threshold" x1="{left}" x2="{W - right}" y1="{y:.1f}" '
+                   f'y2="{y:.1f}" stroke="{BAD}" stroke-width="1.5" stroke-dasharray="6 4"/>'
+                   f'<text x="{W - right + 6}" y="{y + 4:.1f}" font-size="13" fill="{BAD}">'
+                   f'threshold {threshold:g} mm</text>')
+    out.append(f'<line x1="{left}" x2="{W - right}" y1="{base:.1f}" y2="{base:.1f}" stroke="#1d2329"/>')
+    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 14}" text-anchor="middle" font-size="13" '
+               f'fill="#1d2329">entries in manifest order ({len(rows)} solved)</text>')
+    out.append(f'<text x="16" y="{top_pad + ph / 2:.1f}" font-size="13" fill="#1d2329" '
+               f'transform="rotate(-90 16 {top_pad + ph / 2:.1f})" text-anchor="middle">'
+               f'mm (log scale)</text>')
     out.append("</svg>")
     return "".join(out)
 
 
-def _nice_step(raw: float) -> float:
-    if raw <= 0:
-        return 1.0
-    mag = 10 ** math.floor(math.log10(raw))
-    for m in (1, 2, 2.5, 5, 10):
-        if raw <= m * mag:
-            return m * mag
-    return 10 * mag
+def residual_legend(threshold: float | None) -> str:
+    items = [(_swatch(BAR), f"e: {E_WORDS}"),
+             (_swatch(BAR + "48"), "largest distance of one used point"),
+             (_swatch(BAD), "rejected dataset")]
+    if threshold is not None:
+        items.append((_swatch(BAD, "line red"), f"outlier threshold {threshold:g} mm"))
+    return _legend(items)
 
 
 def points_svg(points: Sequence[dict], threshold: float) -> str:
@@ -252,7 +353,7 @@ def points_svg(points: Sequence[dict], threshold: float) -> str:
     residual (outline), threshold line; excluded points red."""
     points = [dict(p, residual=_num(p.get("residual")), loo_residual=_num(p.get("loo_residual")))
               for p in points if isinstance(p, dict)]
-    W, H, left, bottom, top_pad = 40 + 34 * max(len(points), 1), 150, 36, 28, 10
+    W, H, left, bottom, top_pad = 60 + 34 * max(len(points), 1), 160, 48, 30, 14
     vals = [p["residual"] for p in points if p["residual"] is not None] + \
            [p["loo_residual"] for p in points if p["loo_residual"] is not None]
     ymax = max(vals + [threshold * 1.15])
@@ -265,14 +366,16 @@ def points_svg(points: Sequence[dict], threshold: float) -> str:
         return top_pad + ph * (1 - min(v, ymax) / ymax)
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" '
-           f'viewBox="0 0 {W} {H}" role="img" aria-label="point residuals">',
+           f'viewBox="0 0 {W} {H}" role="img" aria-label="distance of each point from the fit">',
            f'<line x1="{left}" x2="{W - 4}" y1="{Y(0):.1f}" y2="{Y(0):.1f}" stroke="#1d2329"/>',
-           f'<text x="{left - 4}" y="{Y(0) + 4:.1f}" text-anchor="end" font-size="10">0</text>',
-           f'<text x="{left - 4}" y="{Y(ymax) + 8:.1f}" text-anchor="end" font-size="10">'
-           f'{ymax:.2g}</text>']
+           f'<text x="{left - 5}" y="{Y(0) + 4:.1f}" text-anchor="end" font-size="12">0</text>',
+           f'<text x="{left - 5}" y="{Y(ymax) + 8:.1f}" text-anchor="end" font-size="12">'
+           f'{ymax:.2g}</text>',
+           f'<text x="12" y="{top_pad + ph / 2:.1f}" font-size="12" text-anchor="middle" '
+           f'transform="rotate(-90 12 {top_pad + ph / 2:.1f})">mm</text>']
     for i, p in enumerate(points):
         x = left + 6 + i * 34
-        color = "#1f6feb" if p.get("used", True) else "#c62828"
+        color = BAR if p.get("used", True) else BAD
         if p["residual"] is not None:
             out.append(f'<rect x="{x}" y="{Y(p["residual"]):.1f}" width="11" '
                        f'height="{Y(0) - Y(p["residual"]):.1f}" fill="{color}"/>')
@@ -280,15 +383,25 @@ def points_svg(points: Sequence[dict], threshold: float) -> str:
             out.append(f'<rect x="{x + 13}" y="{Y(p["loo_residual"]):.1f}" width="11" '
                        f'height="{Y(0) - Y(p["loo_residual"]):.1f}" fill="none" stroke="{color}"/>')
         if clipped and max(p["residual"] or 0, p["loo_residual"] or 0) > ymax:
-            out.append(f'<text x="{x + 12}" y="{top_pad + 8}" text-anchor="middle" font-size="10" '
+            out.append(f'<text x="{x + 12}" y="{top_pad + 8}" text-anchor="middle" font-size="11" '
                        f'fill="{color}">▲</text>')
-        out.append(f'<text x="{x + 12}" y="{H - 12}" text-anchor="middle" font-size="10">'
+        out.append(f'<text x="{x + 12}" y="{H - 12}" text-anchor="middle" font-size="11">'
                    f'{_e(str(p.get("name") or "")[:6])}</text>')
     y = Y(threshold)
-    out.append(f'<line x1="{left}" x2="{W - 4}" y1="{y:.1f}" y2="{y:.1f}" stroke="#c62828" '
+    out.append(f'<line x1="{left}" x2="{W - 4}" y1="{y:.1f}" y2="{y:.1f}" stroke="{BAD}" '
                f'stroke-dasharray="4 3"/>')
+    if threshold < ymax * 0.85 and y - Y(0) < -14:    # the threshold's value, unless crowded
+        out.append(f'<text x="{left - 5}" y="{y + 4:.1f}" text-anchor="end" font-size="12" '
+                   f'fill="{BAD}">{threshold:g}</text>')
     out.append("</svg>")
     return "".join(out)
+
+
+def points_legend(threshold: float) -> str:
+    return _legend([(_swatch(BAR), "distance from the fit"),
+                    (_swatch(BAR, "outline"), "from the fit without that point"),
+                    (_swatch(BAD), "point left out"),
+                    (_swatch(BAD, "line red"), f"threshold {threshold:g} mm")])
 
 
 # ---------------------------------------------------------------- the page
@@ -298,9 +411,191 @@ def _pct(v: Any) -> str:
     return "\u2013" if v is None else f"{100 * v:.1f} %"
 
 
-def render_report(data: dict, title: str = "ucsio batch report") -> str:
-    """The report from the ``--json`` document of ``ucsio batch``."""
-    sm = data.get("summary") or {}
+def _same(entries: Sequence[dict], key: str) -> str:
+    """One manifest-wide value, or the range the entries use."""
+    vals = sorted({v for v in (_num(e.get(key)) for e in entries) if v is not None})
+    if not vals:
+        return "\u2013"
+    if len(vals) == 1:
+        return f"{vals[0]:g}"
+    return f"{vals[0]:g}–{vals[-1]:g} (per entry)"
+
+
+def _href(target: str, base: str | None) -> str:
+    """A link from the report's folder to ``target`` (a relative path where
+    the two share a folder tree, so the link survives moving both)."""
+    if base is None:
+        return target
+    try:
+        rel = os.path.relpath(os.path.abspath(target), base)
+    except ValueError:       # another drive on Windows
+        rel = os.path.abspath(target)
+    return rel.replace(os.sep, "/")
+
+
+def _meta(data: dict, entries: list[dict], meta: dict) -> str:
+    made = meta.get("generated") or "\u2013"
+    parts = [("made", _e(made)), ("by ucsio", _e(meta.get("version") or "\u2013")),
+             ("manifest", f"<code>{_e(data.get('manifest'))}</code>"),
+             ("tolerance", f"{_e(_same(entries, 'tolerance'))} mm"),
+             ("outlier threshold", f"{_e(_same(entries, 'threshold'))} mm"),
+             ("min points", _e(_same(entries, "min_points")))]
+    reaches = sorted({v for v in (_num(_dict(e.get("precision")).get("reach"))
+                                  for e in entries) if v is not None})
+    if reaches:
+        parts.append(("precision checked at", f"{_e(', '.join(f'{r:g}' for r in reaches))} mm "
+                      "from the points"))
+    links = []
+    if meta.get("csv"):
+        links.append(f'<a id="csv-link" href="{_e(_href(meta["csv"], meta.get("base")))}">'
+                     f'{_e(os.path.basename(meta["csv"]))}</a>')
+    if links:
+        parts.append(("table (CSV)", " ".join(links)))
+    return '<div id="meta">' + "".join(f"<span>{k} <b>{v}</b></span>" for k, v in parts) + "</div>"
+
+
+# what needs action, by kind: (status, heading, what to do for all of them)
+ACTION_KINDS = (
+    ("over tolerance", "Over tolerance: the fixture is not where the simulation has it",
+     "check that the fixture sits where the cell layout says; if it does, have the programs "
+     "corrected (re-teach, or update the frame in the simulation) before they are downloaded."),
+    ("rejected", "Rejected: the measurement is not good enough to trust",
+     "measure these stations again; each line says what was wrong."),
+    ("error", "Failed: ucsio could not process these entries",
+     "fix the input each line names and run the batch again."),
+    ("patch error", "Not patched: the corrected controller file was not written",
+     "resolve the refusal (or patch by hand with ucsio patch) and run the batch again."),
+)
+
+
+def _why(e: dict) -> tuple[str, str]:
+    """(why, what to do beyond the kind's advice) for an entry that needs
+    action, in plain words."""
+    status = e.get("status")
+    frame = e.get("frame_name") or "the frame"
+    if status == "over tolerance":
+        d = _dict(e.get("diff"))
+        why = (f"{frame} is {_f(e.get('dt_mean'), 1)} mm off on average along x, y and z "
+               f"(dt_mean; tolerance {_g(e.get('tolerance'))} mm)")
+        if _num(d.get("angle")) is not None:
+            why += f" and turned by {_f(d.get('angle'), 2)}°"
+        pm = _dict(e.get("points_moved"))
+        if _num(pm.get("max")) is not None:
+            why += f"; its taught points move by up to {_f(pm.get('max'), 1)} mm ({pm.get('worst')})"
+        return why + ".", ""
+    if status == "rejected":
+        reason = _reason(e)
+        todo = ("measure more points, spread over the whole fixture" if "too few" in reason
+                or "pin" in reason else "check the reflector, its TCP, and that the fixture "
+                "did not move while measuring")
+        return reason + ".", todo + "."
+    if status == "error":
+        todo = {
+            "manifest": "fix this entry in the manifest.",
+            "controller": "check the controller file and the frame name in the manifest.",
+            "tool": "check the tool named in the manifest (file and name).",
+            "measurement": "fix or replace the measurement file (the message names the line).",
+            "solve": "the points do not define a frame (too few, or on a line): measure "
+                     "points spread over the fixture.",
+            "diff": "this frame is not a fixed frame in robot world: name the right frame "
+                    "in the manifest.",
+        }.get(e.get("stage") or "", "")
+        return f"{e.get('error') or 'unknown error'}.", todo
+    return "", ""
+
+
+def _action_item(i: int, e: dict, status: str, why: str, todo: str) -> str:
+    return (f'<li class="action" data-name="{_e(e.get("name"))}" data-status="{_e(status)}">'
+            f'<a href="#e{i}"><b>{_e(e.get("name"))}</b></a> '
+            f'<span class="why">{_e(why)}</span>'
+            + (f'<span class="todo">{_e(todo)}</span>' if todo else "") + "</li>")
+
+
+def _actions(entries: list[dict]) -> str:
+    """The action list: entries over tolerance, rejected, failed, and
+    patched copies not written, each kind with what to do, each entry with
+    its reason in plain words."""
+    kinds = []
+    total = 0
+    for status, heading, todo in ACTION_KINDS:
+        items = []
+        for i, e in enumerate(entries):
+            if status == "patch error":
+                if e.get("patch_error"):
+                    items.append(_action_item(i, e, status, f"{e['patch_error']}.", ""))
+            elif e.get("status") == status:
+                why, more = _why(e)
+                items.append(_action_item(i, e, status, why, more))
+        if not items:
+            continue
+        total += len(items)
+        cls = {"over tolerance": "warn", "rejected": "bad"}.get(status, "err")
+        kinds.append(f'<div class="kind" data-kind="{_e(status)}"><h3><span class="pill {cls}">'
+                     f'{len(items)}</span> {_e(heading)}</h3><p class="todo">{_e(todo)}</p>'
+                     f'<ol>{"".join(items)}</ol></div>')
+    unplaced = [(i, e) for i, e in enumerate(entries) if e.get("points_error")]
+    if unplaced:
+        total += len(unplaced)
+        kinds.append('<div class="kind" data-kind="points error"><h3><span class="pill err">'
+                     f'{len(unplaced)}</span> Taught points not placed</h3><p class="todo">check '
+                     'the frame data in the controller file.</p><ol>'
+                     + "".join(_action_item(i, e, "points error", f"{e['points_error']}.", "")
+                               for i, e in unplaced) + "</ol></div>")
+    if not kinds:
+        n = len(entries)
+        return ('<section id="actions" class="clear"><h2>Nothing needs action</h2>'
+                f'<p>All {n} entr{"y" if n == 1 else "ies"} passed: the measured frames are '
+                'within tolerance and the programs can be used as they are.</p></section>')
+    return (f'<section id="actions"><h2>Needs action: {total}</h2>' + "".join(kinds)
+            + "</section>")
+
+
+def _stations(entries: list[dict]) -> str:
+    """Per station (the entry's ``station``, else its controller's folder):
+    entries, how many passed, the worst dt_mean, the mean e."""
+    by: dict[str, list[dict]] = {}
+    for e in entries:
+        st = e.get("station")
+        if not isinstance(st, str) or not st:
+            c = e.get("controller")
+            st = os.path.basename(os.path.dirname(c)) if isinstance(c, str) else ""
+        by.setdefault(st or "\u2013", []).append(e)
+    points = any(isinstance(e.get("points_moved"), dict) for e in entries)
+    head = ('<table id="stations"><tr><th>station</th><th class="n">entries</th>'
+            '<th class="n">passed</th><th class="n">over tolerance</th><th class="n">rejected</th>'
+            '<th class="n">failed</th><th class="n">worst dt_mean<small>largest average shift, '
+            'mm</small></th><th class="n">mean e<small>measurement error, mm</small></th>'
+            + ('<th class="n">taught points move<small>up to, mm</small></th>' if points else "")
+            + "</tr>")
+    rows = []
+    for st in sorted(by):
+        es = by[st]
+        count = {s: sum(e.get("status") == s for e in es)
+                 for s in ("pass", "over tolerance", "rejected", "error")}
+        dts = [v for v in (_num(e.get("dt_mean")) for e in es) if v is not None]
+        errs = [v for v in (_num(e.get("e")) for e in es if e.get("accepted")) if v is not None]
+        moved = [v for v in (_num(_dict(e.get("points_moved")).get("max")) for e in es)
+                 if v is not None]
+        ok = count["pass"] == len(es)
+        rows.append(
+            f'<tr class="station" data-station="{_e(st)}" data-entries="{len(es)}" '
+            f'data-passed="{count["pass"]}"><td>{_e(st)}</td><td class="n">{len(es)}</td>'
+            f'<td class="n">{count["pass"]}{"" if ok else " ⚠"}</td>'
+            f'<td class="n">{count["over tolerance"]}</td><td class="n">{count["rejected"]}</td>'
+            f'<td class="n">{count["error"]}</td><td class="n">{_f(max(dts) if dts else None)}</td>'
+            f'<td class="n">{_f(sum(errs) / len(errs) if errs else None)}</td>'
+            + (f'<td class="n">{_f(max(moved) if moved else None)}</td>' if points else "")
+            + "</tr>")
+    return head + "".join(rows) + "</table>"
+
+
+def render_report(data: dict, title: str = "ucsio batch report",
+                  meta: dict | None = None) -> str:
+    """The report from the ``--json`` document of ``ucsio batch``. ``meta``:
+    ``generated`` (when), ``version``, ``csv`` (the CSV written beside it),
+    ``base`` (the report's folder, for relative links)."""
+    meta = dict(meta or {})
+    sm = _dict(data.get("summary"))
     entries = [e for e in (data.get("entries") or []) if isinstance(e, dict)]
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              '<meta name="viewport" content="width=device-width, initial-scale=1">',
@@ -309,25 +604,31 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
              '<meta http-equiv="Content-Security-Policy" content="default-src \'none\'; '
              'style-src \'unsafe-inline\'; img-src data:">',
              f"<style>{CSS}</style></head><body>",
-             f"<h1>{_e(title)}</h1>",
-             f'<div class="sub">manifest <code>{_e(data.get("manifest"))}</code></div>']
+             f'<header id="top"><h1>{_e(title)}</h1>{_meta(data, entries, meta)}</header>',
+             _actions(entries)]
 
-    cards = [("total", _f(sm.get("total")), "", "total"),
-             ("passed", _f(sm.get("passed")), "ok", "passed"),
-             ("over tolerance", _f(sm.get("over_tolerance")), "warn", "over_tolerance"),
-             ("rejected", _f(sm.get("rejected")), "bad", "rejected"),
-             ("errors", _f(sm.get("errors")), "err", "errors"),
-             ("success rate", _pct(sm.get("success_rate")), "ok", "success_rate")]
+    parts.append("<h2>Summary</h2>")
+    cards = [("total", _f(sm.get("total")), "", "total", "entries in the manifest"),
+             ("passed", _f(sm.get("passed")), "ok", "passed", "within tolerance"),
+             ("over tolerance", _f(sm.get("over_tolerance")), "warn", "over_tolerance",
+              "frame moved too far"),
+             ("rejected", _f(sm.get("rejected")), "bad", "rejected", "measure again"),
+             ("errors", _f(sm.get("errors")), "err", "errors", "could not be processed"),
+             ("success rate", _pct(sm.get("success_rate")), "ok", "success_rate",
+              "passed of total")]
     patching = bool(sm.get("patched") or sm.get("patch_errors")) or any(
         "patched" in e or "patch_error" in e for e in entries)
     if patching:
-        cards += [("patched copies", _f(sm.get("patched")), "ok", "patched"),
-                  ("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors")]
+        cards += [("patched copies", _f(sm.get("patched")), "ok", "patched",
+                   "corrected files written"),
+                  ("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors",
+                   "corrected files not written")]
     parts.append('<div class="cards" id="summary">')
-    for label, value, cls, key in cards:
+    for label, value, cls, key, words in cards:
         raw = sm.get(key)
         parts.append(f'<div class="card {cls}" data-key="{key}" data-value="{_attr(raw)}">'
-                     f'<div class="v">{_e(value)}</div><div class="k">{_e(label)}</div></div>')
+                     f'<div class="v">{_e(value)}</div><div class="k">{_e(label)}: '
+                     f'{_e(words)}</div></div>')
     parts.append("</div>")
     refused = [e for e in entries if e.get("patch_error")]
     if refused:
@@ -337,13 +638,18 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
                      + "".join(f'<li><b>{_e(e.get("name"))}</b>: {_e(e["patch_error"])}</li>'
                                for e in refused) + "</ul></div>")
 
-    parts.append("<h2>Groups</h2>")
-    parts.append('<table id="groups"><tr><th>group</th><th>dt_mean (mm)</th><th class="n">count</th>'
-                 '<th class="n">% of total</th><th class="n">mean e (mm)</th>'
-                 '<th class="n">std e (mm)</th></tr>')
+    parts.append("<h2>By station</h2>")
+    parts.append(_stations(entries))
+
+    parts.append("<h2>Groups (Table 4)</h2>")
+    parts.append('<table id="groups"><tr><th>group</th><th>dt_mean<small>average shift, mm'
+                 '</small></th><th>meaning</th><th class="n">count</th>'
+                 '<th class="n">% of total</th><th class="n">mean e<small>measurement error, mm'
+                 '</small></th><th class="n">std e<small>its spread, mm</small></th></tr>')
     for k, g in enumerate(sm.get("groups") or [], 1):
+        g = _dict(g)
         gno = g.get("group") if isinstance(g.get("group"), int) else k
-        rng = g.get("range") or [None, None]
+        rng = g.get("range") if isinstance(g.get("range"), (list, tuple)) else [None, None]
         lo, hi = (list(rng) + [None, None])[:2]
         span = (f"{_g(lo)} – {_g(hi)}" if _num(hi) is not None else f"≥ {_g(lo)}")
         color = GROUP_COLORS[(gno - 1) % len(GROUP_COLORS)]
@@ -352,14 +658,16 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
             f'data-percent="{_attr(g.get("percent"))}" data-mean-e="{_attr(g.get("mean_e"))}" '
             f'data-std-e="{_attr(g.get("std_e"))}"><td><span class="swatch" '
             f'style="background:{color}"></span>{_e(gno)}</td>'
-            f'<td>{span}</td><td class="n">{_f(g.get("count"))}</td>'
+            f'<td>{span}</td><td>{_e(GROUP_WORDS[(gno - 1) % 5])}</td>'
+            f'<td class="n">{_f(g.get("count"))}</td>'
             f'<td class="n">{_f(g.get("percent"), 1)}</td>'
             f'<td class="n">{_f(g.get("mean_e"))}</td><td class="n">{_f(g.get("std_e"))}</td></tr>')
     parts.append("</table>")
-    c = sm.get("correlation") or {}
+    c = _dict(sm.get("correlation"))
     parts.append('<p class="note" id="correlation" '
                  + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
-                 + ">Pearson correlation of simulated vs measured position over passing entries: "
+                 + ">How well the simulated positions predict the measured ones over passing "
+                   "entries (Pearson correlation, 1 = perfectly): "
                  + ", ".join(f"{k} {_f(c.get(k), 5)}" for k in "xyz")
                  + ". Counts by group are over accepted entries; std e is the sample standard "
                    "deviation (n − 1), blank below two entries.</p>")
@@ -368,34 +676,44 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
     tol = tolerances.pop() if len(tolerances) == 1 else None
     dts = [(_num(e.get("dt_mean")), e.get("group")) for e in entries
            if _num(e.get("dt_mean")) is not None]
-    parts.append("<h2>dt_mean of the accepted entries</h2>")
-    parts.append(f'<div class="chart" id="histogram">{histogram_svg(dts, tolerance=tol)}</div>')
-    parts.append('<p class="note">Dashed lines: group boundaries at '
-                 + ", ".join(f"{b:g}" for b in GROUP_BOUNDS) + " mm. A frame passes below its "
-                 "tolerance" + (f" ({tol:g} mm)." if tol is not None else " (per entry).") + "</p>")
+    parts.append("<h2>How far the frames moved (dt_mean)</h2>")
+    parts.append(f'<figure class="chart" id="histogram">{histogram_svg(dts, tolerance=tol)}'
+                 f'{histogram_legend(tol)}</figure>')
+    parts.append('<p class="note">Accepted entries only. A frame passes below its tolerance'
+                 + (f" ({tol:g} mm)." if tol is not None else " (set per entry).") + "</p>")
 
     solved = [e for e in entries if _num(e.get("e")) is not None]
-    thresholds = {_num(e.get("threshold")) for e in solved}
+    thresholds = {_num(e.get("threshold")) for e in solved} - {None}
     thr = thresholds.pop() if len(thresholds) == 1 else None
-    parts.append("<h2>Residuals per entry</h2>")
-    parts.append(f'<div class="chart" id="residuals">{residual_bars_svg(solved, thr)}</div>')
+    parts.append("<h2>Measurement error per entry (e)</h2>")
+    parts.append(f'<figure class="chart" id="residuals">{residual_bars_svg(solved, thr)}'
+                 f'{residual_legend(thr)}</figure>')
 
     parts.append("<h2>Entries</h2>")
-    parts.append('<table id="entries"><tr><th>entry</th><th>status</th><th class="n">used</th>'
-                 '<th class="n">e</th><th class="n">dt_mean</th><th class="n">group</th>'
-                 '<th class="n">dx</th><th class="n">dy</th><th class="n">dz</th>'
-                 '<th class="n">angle°</th></tr>')
+    points = any(isinstance(e.get("points_moved"), dict) for e in entries)
+    parts.append('<table id="entries"><tr><th>entry</th><th>station</th><th>status</th>'
+                 '<th class="n">points used</th>'
+                 '<th class="n">e<small>measurement error, mm</small></th>'
+                 '<th class="n">dt_mean<small>average shift, mm</small></th>'
+                 '<th class="n">group</th><th class="n">dx<small>mm</small></th>'
+                 '<th class="n">dy<small>mm</small></th><th class="n">dz<small>mm</small></th>'
+                 '<th class="n">angle<small>turned, °</small></th>'
+                 + ('<th class="n">taught points<small>moved up to, mm (n)</small></th>'
+                    if points else "") + '</tr>')
     for i, e in enumerate(entries):
-        d = e.get("diff") or {}
+        d = _dict(e.get("diff"))
         status = e.get("status")
         cls = STATUS_CLASS.get(status, "err")
+        pm = _dict(e.get("points_moved"))
         parts.append(
             f'<tr class="entry" data-name="{_e(e.get("name"))}" data-status="{_e(status)}" '
             f'data-e="{_attr(_num(e.get("e")))}" data-dt-mean="{_attr(_num(e.get("dt_mean")))}" '
             f'data-group="{_attr(_num(e.get("group")))}" data-pass="{_attr(e.get("pass"))}"'
+            + (f' data-points-max="{_attr(_num(pm.get("max")))}"' if pm else "")
             + (f' data-patch-error="{_e(e["patch_error"])}"' if e.get("patch_error") else "")
             + (f' data-reason="{_e(_reason(e))}"' if status == "rejected" else "")
             + f'><td><a href="#e{i}">{_e(e.get("name"))}</a></td>'
+            f'<td>{_e(e.get("station"))}</td>'
             f'<td><span class="pill {cls}"'
             + (f' title="{_e(_reason(e))}"' if status == "rejected" else "")
             + f'>{_e(status)}</span>{_patch_pill(e)}</td>'
@@ -403,17 +721,26 @@ def render_report(data: dict, title: str = "ucsio batch report") -> str:
             f'<td class="n">{_f(e.get("e"))}</td><td class="n">{_f(e.get("dt_mean"))}</td>'
             f'<td class="n">{_f(e.get("group"))}</td><td class="n">{_f(d.get("dx"))}</td>'
             f'<td class="n">{_f(d.get("dy"))}</td><td class="n">{_f(d.get("dz"))}</td>'
-            f'<td class="n">{_f(d.get("angle"), 4)}</td></tr>')
+            f'<td class="n">{_f(d.get("angle"), 4)}</td>'
+            + (f'<td class="n">{_points_cell(pm)}</td>' if points else "") + '</tr>')
     parts.append("</table>")
 
     parts.append("<h2>Details</h2>")
     for i, e in enumerate(entries):
-        parts.append(_detail(i, e))
+        parts.append(_detail(i, e, meta.get("base")))
 
     payload = json.dumps(data, ensure_ascii=False, allow_nan=False).replace("</", "<\\/")
     parts.append(f'<script type="application/json" id="ucsio-data">{payload}</script>')
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
+
+
+def _points_cell(pm: dict) -> str:
+    if not pm:
+        return "\u2013"
+    if not pm.get("count"):
+        return "none found"
+    return f"{_f(pm.get('max'))} ({_f(pm.get('count'))})"
 
 
 def _used(e: dict) -> str:
@@ -425,8 +752,9 @@ def _used(e: dict) -> str:
 
 def _reason(e: dict) -> str:
     """Why an entry's dataset was rejected: the solver's ``reason`` (too few
-    points, or residuals over the threshold with no point to single out);
-    a JSON without one (older, or hand-edited) gets a generic line."""
+    points, residuals over the threshold with no point to single out, points
+    that do not pin the orientation down); a JSON without one (older, or
+    hand-edited) gets a generic line."""
     reason = e.get("reason")
     if isinstance(reason, str) and reason.strip():
         return reason.strip()
@@ -452,7 +780,7 @@ def _pose_rows(label: str, p: Any) -> str:
             f"<td class='n'>{_f(p.get('c'), 4)}</td><td class='mono'>{qs}</td></tr>")
 
 
-def _detail(i: int, e: dict) -> str:
+def _detail(i: int, e: dict, base: str | None = None) -> str:
     status = e.get("status")
     cls = STATUS_CLASS.get(status, "err")
     is_open = status in ("error", "rejected") or bool(e.get("patch_error"))
@@ -478,10 +806,10 @@ def _detail(i: int, e: dict) -> str:
                      f"<td class='n'>{_f(d.get('da'), 4)}</td><td class='n'>{_f(d.get('db'), 4)}</td>"
                      f"<td class='n'>{_f(d.get('dc'), 4)}</td>"
                      f"<td>angle {_f(d.get('angle'), 4)}°, dist {_f(d.get('dist'))} mm, dt_mean "
-                     f"{_f(d.get('dt_mean'))} mm, group {_f(d.get('group'))}</td></tr>")
-        body.append("<table><tr><th></th><th class='n'>x</th><th class='n'>y</th><th class='n'>z</th>"
-                    "<th class='n'>a</th><th class='n'>b</th><th class='n'>c</th><th>q</th></tr>"
-                    + rows + "</table>")
+                     f"{_f(d.get('dt_mean'))} mm ({DT_WORDS}), group {_f(d.get('group'))}</td></tr>")
+        body.append("<table><tr><th></th><th class='n'>x mm</th><th class='n'>y mm</th>"
+                    "<th class='n'>z mm</th><th class='n'>a °</th><th class='n'>b °</th>"
+                    "<th class='n'>c °</th><th>q</th></tr>" + rows + "</table>")
     pts = [p for p in (e.get("points") or []) if isinstance(p, dict)]
     if pts:
         prow = "".join(
@@ -489,9 +817,12 @@ def _detail(i: int, e: dict) -> str:
             f"<td class='n'>{_f(p.get('loo_residual'))}</td>"
             f"<td>{'yes' if p.get('used', True) else 'no (' + _e(p.get('excluded_by')) + ')'}</td></tr>"
             for p in pts)
-        body.append("<table><tr><th>point</th><th class='n'>residual</th>"
-                    "<th class='n'>leave-one-out</th><th>used</th></tr>" + prow + "</table>")
-        body.append(points_svg(pts, _num(e.get("threshold")) or defaults.THRESHOLD))
+        body.append("<table><tr><th>point</th><th class='n'>residual<small>from the fit, mm"
+                    "</small></th><th class='n'>leave-one-out<small>from the fit without it, mm"
+                    "</small></th><th>used</th></tr>" + prow + "</table>")
+        thr = _num(e.get("threshold")) or defaults.THRESHOLD
+        body.append(f'<figure class="chart small" id="points-{i}">{points_svg(pts, thr)}'
+                    f'{points_legend(thr)}</figure>')
     if pts or e.get("n_points") is not None:
         info = (f"n {_f(e.get('n_used'))} of {_f(e.get('n_points'))} used, e {_f(e.get('e'))} mm, "
                 f"rms {_f(e.get('rms'))}, max {_f(e.get('max'))} mm (threshold "
@@ -506,20 +837,46 @@ def _detail(i: int, e: dict) -> str:
         if e.get("uncertainty_error"):
             info += f"; uncertainty not computed: {e['uncertainty_error']}"
         body.append(f'<p class="note" style="flex-basis:100%">{_e(info)}</p>')
+    prec = _dict(e.get("precision"))
+    if _num(prec.get("at_reach")) is not None:
+        body.append(f'<p class="note precision" style="flex-basis:100%">How well the points pin '
+                    f'the frame down: a point {_g(prec.get("reach"))} mm from them is known to '
+                    f'{_f(prec.get("at_reach"), 2)} mm (95 %); orientation ± '
+                    f'{_f(prec.get("angle_std"), 4)}° (1σ), noise σ {_f(prec.get("sigma"), 3)} '
+                    'mm per axis.</p>')
+    pm = _dict(e.get("points_moved"))
+    if pm:
+        if pm.get("count"):
+            txt = (f"Taught points in this frame: {_f(pm.get('count'))}; they move in world by "
+                   f"up to {_f(pm.get('max'))} mm ({pm.get('worst')}), "
+                   f"{_f(pm.get('mean'))} mm on average.")
+        else:
+            txt = "No taught points found in this frame."
+        body.append(f'<p class="note points-moved" style="flex-basis:100%">{_e(txt)}</p>')
+    if e.get("points_error"):
+        body.append(f'<div class="err-msg" style="flex-basis:100%">taught points not placed: '
+                    f'{_e(e["points_error"])}</div>')
     if status == "rejected":
         body.append('<div class="err-msg rejected" style="flex-basis:100%">REJECTED: '
                     f'{_e(_reason(e))}; measure again</div>')
-    src = f"measurement {e.get('measurement')}; controller {e.get('controller')}"
+    src = (f"measurement <code>{_e(e.get('measurement'))}</code>; controller "
+           f"<code>{_e(e.get('controller'))}</code>")
     if e.get("patched"):
-        src += f"; patched copy {e['patched']}"
-    body.append(f'<p class="note" style="flex-basis:100%">{_e(src)}</p>')
+        src += (f'; patched copy <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
+                f'{_e(e["patched"])}</a>')
+    body.append(f'<p class="note" style="flex-basis:100%">{src}</p>')
     return head + "".join(body) + "</div></details>"
 
 
-def write_report(result, path: str) -> None:
-    """Write the report of a ``BatchResult`` (atomically)."""
+def write_report(result, path: str, csv: str | None = None) -> None:
+    """Write the report of a ``BatchResult`` (atomically); ``csv``: the CSV
+    written beside it, linked from the report."""
+    from . import __version__
     from .files import atomic_write_text
     from .output import _clean
 
     data = _clean(result.as_dict())
-    atomic_write_text(path, render_report(data))
+    now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0)
+    meta = {"generated": now.strftime("%Y-%m-%d %H:%M UTC"), "version": __version__,
+            "csv": csv, "base": os.path.dirname(os.path.abspath(path))}
+    atomic_write_text(path, render_report(data, meta=meta))

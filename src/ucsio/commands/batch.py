@@ -88,7 +88,7 @@ def run(args) -> int:
         write_csv(result.entries, args.csv)  # atomic; errors: one UcsioError
     if args.report:
         from ..report import write_report
-        write_report(result, args.report)
+        write_report(result, args.report, csv=args.csv)
 
     if args.json:
         emit_json(result.as_dict())

@@ -1,0 +1,186 @@
+"""The batch report in a real browser: headless Chromium from the
+distribution's packages (``.ci/run`` installs it where it is missing),
+driven through the DevTools protocol (tests/browser.py).
+
+- the page loads with no console error (a CSP violation, a script error, a
+  failed load all count);
+- the action list is visible above the fold of a 1280 x 800 window;
+- every chart has its legend, visible, and axis labels a person can read;
+- the layout (positions and sizes of the page's sections) matches the
+  stored expectation, tests/expected/report_layout.json, by structure and
+  within tolerances, not by pixels. ``UCSIO_UPDATE_LAYOUT=1`` rewrites it
+  after an intended change of the page.
+
+Without Chromium the tests fail, saying how to install it; set
+``UCSIO_SKIP_BROWSER=1`` to skip them knowingly.
+"""
+from __future__ import annotations
+
+import contextlib
+import importlib.util
+import io
+import json
+import os
+import struct
+from pathlib import Path
+
+import pytest
+
+from browser import Browser, find_chromium
+from ucsio.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+EXPECTED = Path(__file__).resolve().parent / "expected" / "report_layout.json"
+WIDTH, HEIGHT = 1280, 800
+SECTIONS = ["#top", "#meta", "#actions", "#summary", "#stations", "#groups", "#histogram",
+            "#residuals", "#entries", "details#e0"]
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    path = find_chromium()
+    if path is None:
+        if os.environ.get("UCSIO_SKIP_BROWSER"):
+            pytest.skip("UCSIO_SKIP_BROWSER is set and no Chromium is installed")
+        pytest.fail("Chromium is not installed: apt-get install -y chromium (.ci/run does it), "
+                    "or set UCSIO_SKIP_BROWSER=1 to skip the browser tests knowingly")
+    return path
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    dest = tmp_path_factory.mktemp("fleet_browser")
+    spec = importlib.util.spec_from_file_location("make_fleet", ROOT / "fixtures/fleet/make_fleet.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    mod.make_fleet(dest)
+    html_path = dest / "out" / "report.html"
+    html_path.parent.mkdir()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        code = main(["batch", str(dest / "manifest.toml"), "--report", str(html_path),
+                     "--csv", str(dest / "out" / "fleet.csv"), "--patch-dir",
+                     str(dest / "patched")])
+    assert code == 1
+    return html_path
+
+
+@pytest.fixture(scope="module")
+def page(chromium, report):
+    with Browser(WIDTH, HEIGHT, executable=chromium) as b:
+        b.load(report)
+        yield b
+
+
+MEASURE = """
+(() => {
+  const r = el => { const b = el.getBoundingClientRect();
+    return {x: b.left + scrollX, y: b.top + scrollY, width: b.width, height: b.height}; };
+  return %s.map(sel => { const el = document.querySelector(sel);
+    return el ? Object.assign({selector: sel}, r(el)) : {selector: sel, missing: true}; });
+})()
+"""
+
+
+def test_loads_without_console_errors(page):
+    assert page.errors == []
+    assert page.evaluate("document.readyState") == "complete"
+    assert page.evaluate("document.title") == "ucsio batch report"
+
+
+def test_action_list_is_above_the_fold(page):
+    box = page.evaluate("""(() => { const a = document.getElementById('actions');
+        const first = a.querySelector('li.action') || a.querySelector('p');
+        const b = a.getBoundingClientRect(), f = first.getBoundingClientRect();
+        return {top: b.top, width: b.width, firstBottom: f.bottom, firstTop: f.top,
+                visible: getComputedStyle(a).visibility, display: getComputedStyle(a).display}})()""")
+    assert box["display"] != "none" and box["visible"] == "visible"
+    assert 0 <= box["top"] < HEIGHT / 3          # the first thing after the title and run facts
+    assert box["firstBottom"] < HEIGHT           # its first item is readable without scrolling
+    assert box["width"] > WIDTH / 2
+    # and it comes before the summary in the page
+    order = page.evaluate("[...document.querySelectorAll('#actions, #summary, #histogram')]"
+                          ".map(e => e.id)")
+    assert order == ["actions", "summary", "histogram"]
+
+
+def test_every_chart_has_a_visible_legend_and_readable_axes(page):
+    page.evaluate("document.querySelectorAll('details').forEach(d => d.open = true)")
+    charts = page.evaluate("""[...document.querySelectorAll('figure.chart')].map(f => {
+        const lg = f.querySelector(':scope > figcaption.legend');
+        const svg = f.querySelector('svg');
+        const texts = [...svg.querySelectorAll('text')].map(t => t.getBoundingClientRect().height)
+                                                        .filter(h => h > 0);
+        const rot = [...svg.querySelectorAll('text[transform]')].map(t => t.textContent);
+        return {id: f.id, legend: lg ? lg.getBoundingClientRect().height : 0,
+                items: lg ? lg.querySelectorAll('.item').length : 0,
+                legendInside: lg ? (lg.getBoundingClientRect().bottom
+                                    <= f.getBoundingClientRect().bottom + 0.5) : false,
+                minText: Math.min(...texts), yLabel: rot}; })""")
+    ids = [c["id"] for c in charts]
+    assert "histogram" in ids and "residuals" in ids
+    assert sum(i.startswith("points-") for i in ids) >= 90       # one per solved entry
+    for c in charts:
+        assert c["legend"] > 0 and c["items"] >= 3 and c["legendInside"], c
+        assert c["minText"] >= 9, c             # tick labels a person can read
+        assert c["yLabel"], c                   # the value axis says what it is
+    big = {c["id"]: c for c in charts}
+    assert big["histogram"]["yLabel"] == ["number of entries"]
+    assert big["residuals"]["yLabel"] == ["mm (log scale)"]
+
+
+def test_residual_chart_keeps_passing_bars_readable(page):
+    """The old chart scaled to the worst entry: every passing bar was a flat
+    line under the rejected ones. Now a passing entry's bar is tall enough
+    to read, and the threshold label overlaps no bar."""
+    got = page.evaluate("""(() => {
+        const bars = [...document.querySelectorAll('#residuals rect.ebar')];
+        const h = bars.map(b => b.getBoundingClientRect().height).sort((a, b) => a - b);
+        const label = [...document.querySelectorAll('#residuals text')]
+            .find(t => t.textContent.startsWith('threshold')).getBoundingClientRect();
+        const over = bars.filter(b => { const r = b.getBoundingClientRect();
+            return r.right > label.left && r.left < label.right && r.bottom > label.top
+                   && r.top < label.bottom; }).length;
+        return {median: h[Math.floor(h.length / 2)], over}; })()""")
+    assert got["median"] >= 40 and got["over"] == 0
+
+
+def test_links_to_csv_and_patched_copies_resolve(page, report):
+    hrefs = page.evaluate("[...document.querySelectorAll('#csv-link, a.patched')]"
+                          ".map(a => a.getAttribute('href'))")
+    assert hrefs[0] == "fleet.csv" and len(hrefs) > 50
+    for h in hrefs:
+        assert not h.startswith(("http:", "https:", "/")), h
+        assert (report.parent / h).is_file(), h
+
+
+def test_screenshot_and_layout_match_the_stored_structure(page, tmp_path):
+    page.evaluate("document.querySelectorAll('details').forEach(d => d.open = false);"
+                  "document.getElementById('e0').open = true; window.scrollTo(0, 0)")
+    png = tmp_path / "report.png"
+    page.screenshot(png)
+    head = png.read_bytes()[:24]
+    assert head[:8] == b"\x89PNG\r\n\x1a\n"
+    assert struct.unpack(">II", head[16:24]) == (WIDTH, HEIGHT)
+    if os.environ.get("UCSIO_KEEP_SCREENSHOT"):
+        page.screenshot(os.environ["UCSIO_KEEP_SCREENSHOT"], full_page=True)
+    got = page.evaluate(MEASURE % json.dumps(SECTIONS))
+    assert not [g for g in got if g.get("missing")]
+    layout = {"viewport": [WIDTH, HEIGHT],
+              "sections": [{k: (round(v, 1) if isinstance(v, float) else v) for k, v in g.items()}
+                           for g in got]}
+    if os.environ.get("UCSIO_UPDATE_LAYOUT"):
+        EXPECTED.parent.mkdir(exist_ok=True)
+        EXPECTED.write_text(json.dumps(layout, indent=1) + "\n")
+    want = json.loads(EXPECTED.read_text())
+    assert [s["selector"] for s in want["sections"]] == SECTIONS
+    # the sections come in the same order down the page, without overlapping
+    tops = [g["y"] for g in got]
+    assert tops == sorted(tops)
+    page_height = max(g["y"] + g["height"] for g in got)
+    for w, g in zip(want["sections"], got):
+        sel = g["selector"]
+        assert abs(g["x"] - w["x"]) <= 8, sel                      # same column
+        assert abs(g["width"] - w["width"]) <= 0.03 * WIDTH, sel   # same width
+        # heights and positions vary with the fonts a machine has: by share
+        assert abs(g["height"] - w["height"]) <= 0.25 * w["height"] + 24, sel
+        assert abs(g["y"] - w["y"]) <= 0.15 * page_height + 24, sel
