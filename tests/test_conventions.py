@@ -74,3 +74,105 @@ def test_textconv_with_json_is_a_usage_error():
     assert res.returncode == 2
     assert "--json" in json.loads(res.stdout)["error"]["message"]
     assert res.stderr.count("\n") == 1 and "textconv" in res.stderr
+
+
+# -------------------------------------------------------------- lints (issue 11 point 5)
+
+def _module(tmp_path, q: str, name: str = "q.mod"):
+    p = tmp_path / name
+    p.write_text("MODULE m\n  PERS wobjdata w:=[FALSE,TRUE,\"\",[[0,0,0],[" + q + "]],"
+                 "[[0,0,0],[1,0,0,0]]];\nENDMODULE\n")
+    return p
+
+
+@pytest.mark.parametrize("q, expected", [
+    ("0.7071,0,0,0.7071", [("quaternion-rounding", "info")]),       # RobotWare writes this: 1.9e-5
+    ("0.70711,0,0,0.70711", []),                                     # 2.3e-6: nothing to say
+    ("0.99998,0,0,0", [("quaternion-rounding", "info")]),            # 4.0e-5
+    ("0.99994,0,0,0", [("unnormalized-quaternion", "warning")]),     # 1.2e-4
+    ("0.9,0,0,0", [("unnormalized-quaternion", "warning")]),
+])
+def test_quaternion_lint_fits_what_controllers_write(tmp_path, q, expected):
+    res = run("check", _module(tmp_path, q), "--json")
+    out = json.loads(res.stdout)
+    got = [(l["code"], l["severity"]) for l in out["files"][0]["lints"]]
+    assert got == expected
+    assert res.returncode == (1 if ("unnormalized-quaternion", "warning") in got else 0)
+
+
+def test_check_ignore_silences_codes_and_knows_them(tmp_path):
+    bad = _module(tmp_path, "0.9,0,0,0")
+    assert run("check", bad).returncode == 1
+    res = run("check", bad, "--ignore", "unnormalized-quaternion,no-value")
+    assert res.returncode == 0 and "unnormalized" not in res.stdout
+    res = run("check", bad, "--ignore", "no-value", "--ignore", "unnormalized-quaternion", "--json")
+    assert res.returncode == 0 and json.loads(res.stdout)["files"][0]["lints"] == []
+    res = run("check", bad, "--ignore", "unnormalised-quaternion")      # a typo silences nothing
+    assert res.returncode == 2 and "did you mean 'unnormalized-quaternion'" in res.stderr
+
+
+def test_every_lint_code_is_registered_and_every_finding_names_one():
+    """check --ignore accepts exactly the registered codes: a code emitted
+    anywhere in the parsers must be in controller.LINT_CODES."""
+    import re
+    from ucsio.controller import LINT_CODES
+    emitted = set()
+    for path in (ROOT / "src" / "ucsio").rglob("*.py"):
+        text = path.read_text()
+        for m in re.finditer(r"\blint\(", text):
+            code = re.search(r'"([a-z][a-z0-9-]+)",', text[m.end():m.end() + 200])
+            if code:
+                emitted.add(code.group(1))
+    emitted.discard("warning")
+    assert emitted and emitted <= set(LINT_CODES), emitted - set(LINT_CODES)
+    res = run("check", FIXTURES / "kuka" / "cell_config.dat", "--json")
+    lints = json.loads(res.stdout)["files"][0]["lints"]
+    assert lints and all(l["code"] in LINT_CODES for l in lints)
+
+
+def test_kuka_frame_declared_without_value_is_listed(tmp_path):
+    dat = tmp_path / "user.dat"
+    dat.write_bytes(b"DEFDAT user PUBLIC\r\nDECL GLOBAL FRAME fixture_A\r\n"
+                    b"DECL FRAME later\r\nlater={X 1,Y 2,Z 3,A 0,B 0,C 0}\r\nENDDAT\r\n")
+    res = run("frames", dat, "--json")
+    assert res.returncode == 0
+    frames = {f["name"]: f for f in json.loads(res.stdout)["frames"]}
+    assert list(frames) == ["fixture_A", "later"]
+    assert frames["fixture_A"]["line"] == 2 and frames["fixture_A"]["x"] is None
+    assert frames["later"]["x"] == 1.0
+    res = run("check", dat)
+    assert res.returncode == 0 and "user.dat:2:19: info: no-value: fixture_A" in res.stdout
+    res = run("patch", dat, "--frame", "fixture_a", "--set", "1,2,3,0,0,0")
+    assert res.returncode == 2 and "no literal value" in res.stderr
+
+
+# -------------------------------------------------------------- bare CR (issue 11 point 8)
+
+def test_kuka_file_with_bare_cr_line_endings(tmp_path):
+    lf = (FIXTURES / "kuka" / "cell_config.dat").read_bytes().replace(b"\r\n", b"\n")
+    cr = tmp_path / "cr.dat"
+    cr.write_bytes(lf.replace(b"\n", b"\r"))
+    ref = tmp_path / "lf.dat"
+    ref.write_bytes(lf)
+    got = json.loads(run("frames", cr, "--json").stdout)["frames"]
+    want = json.loads(run("frames", ref, "--json").stdout)["frames"]
+    assert len(got) == len(want) > 5
+    assert [{**f, "file": None} for f in got] == [{**f, "file": None} for f in want]
+    res = run("check", cr)
+    assert "round trip ok" in res.stdout
+    assert [ln.split(":", 1)[1] for ln in res.stdout.splitlines()[1:]] == \
+        [ln.split(":", 1)[1] for ln in run("check", ref).stdout.splitlines()[1:]]
+    # a patch keeps the CRs and shows one changed line
+    out = tmp_path / "patched.dat"
+    res = run("patch", cr, "--frame", "BASE_DATA[1]", "--set", "1,2,3,4,5,6", "-o", out)
+    assert res.returncode == 0
+    assert res.stdout.count("\n-BASE_DATA[1]=") == 1 and res.stdout.count("\n+BASE_DATA[1]=") == 1
+    assert b"\n" not in out.read_bytes() and out.read_bytes().count(b"\r") == cr.read_bytes().count(b"\r")
+    # an error names the right line
+    lines = lf.split(b"\n")
+    bad_line = next(i for i, ln in enumerate(lines) if ln.startswith(b"BASE_DATA[2]")) + 1
+    lines[bad_line - 1] = b"BASE_DATA[2]={X 1,Y 2"
+    bad = tmp_path / "bad.dat"
+    bad.write_bytes(b"\r".join(lines))
+    res = run("frames", bad)
+    assert res.returncode == 2 and f"bad.dat:{bad_line}:" in res.stderr
