@@ -176,3 +176,31 @@ def test_kuka_file_with_bare_cr_line_endings(tmp_path):
     bad.write_bytes(b"\r".join(lines))
     res = run("frames", bad)
     assert res.returncode == 2 and f"bad.dat:{bad_line}:" in res.stderr
+
+
+# -------------------------------------------------------------- suggestions
+
+def test_mistyped_frame_name_gets_the_nearest(tmp_path):
+    mod = FIXTURES / "abb" / "variants.mod"
+    res = run("patch", mod, "--frame", "wobjSpaces", "--set", "1,2,3,0,0,0")
+    assert res.returncode == 2 and "did you mean 'wobjSpaced'" in res.stderr
+    res = run("patch", FIXTURES / "kuka" / "cell_config.dat", "--frame", "Positoner",
+              "--set", "1,2,3,0,0,0")
+    assert res.returncode == 2 and "did you mean 'Positioner'" in res.stderr   # a KUKA label
+    res = run("patch", mod, "--frame", "zzz", "--set", "1,2,3,0,0,0")
+    assert res.returncode == 2 and "did you mean" not in res.stderr
+
+
+def test_mistyped_manifest_key_gets_the_nearest(tmp_path):
+    shutil.copy(FIXTURES / "measurements" / "kuka_base3.csv", tmp_path / "points.csv")
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", tmp_path / "config.dat")
+    entry = ('[[entry]]\nname = "a"\nmeasurement = "points.csv"\ncontroller = "config.dat"\n'
+             'frame = "BASE_DATA[1]"\n')
+    (tmp_path / "m.toml").write_text('[defaults]\ntcp = [0, 0, 0]\ntolerence = 5.0\n\n' + entry)
+    res = run("batch", tmp_path / "m.toml")
+    assert res.returncode == 2 and "'tolerence'; did you mean 'tolerance'?" in res.stderr
+    (tmp_path / "m.toml").write_text('[defaults]\ntcp = [0, 0, 0]\n\n' + entry + 'treshold = 2\n')
+    res = run("batch", tmp_path / "m.toml", "--json")
+    assert res.returncode == 1
+    (e,) = json.loads(res.stdout)["entries"]
+    assert "did you mean 'threshold'" in e["error"]

@@ -97,9 +97,10 @@ def _resolve(base: Path, rel: str) -> str:
 def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> dict:
     unknown = [k for k in table if k not in allowed]
     if unknown:
+        from .errors import did_you_mean
         raise UcsioError(f"{where}: unknown key{'s' if len(unknown) > 1 else ''} "
-                         f"{', '.join(map(repr, unknown))} (allowed: {', '.join(allowed)})",
-                         file=path)
+                         f"{', '.join(map(repr, unknown))}{did_you_mean(unknown[0], allowed)} "
+                         f"(allowed: {', '.join(allowed)})", file=path)
     if "tcp" in table and "tool" in table:
         raise UcsioError(f"{where}: give either tcp or tool, not both", file=path)
     return table
@@ -221,7 +222,9 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     base = Path(path).resolve().parent
     top_unknown = [k for k in data if k not in ("defaults", "entry")]
     if top_unknown:
-        raise UcsioError(f"unknown top-level key(s) {', '.join(map(repr, top_unknown))} "
+        from .errors import did_you_mean
+        raise UcsioError(f"unknown top-level key(s) {', '.join(map(repr, top_unknown))}"
+                         f"{did_you_mean(top_unknown[0], ('defaults', 'entry'))} "
                          "(a manifest has [defaults] and [[entry]] tables)", file=path)
     defaults = data.get("defaults", {})
     if not isinstance(defaults, dict):

@@ -12,7 +12,7 @@ import re
 import sys
 
 from . import __version__
-from .errors import UcsioError, UsageError
+from .errors import UcsioError, UsageError, did_you_mean
 
 COMMANDS = {
     "frames": "list every frame in controller files",
@@ -37,17 +37,11 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str):
         m = _INVALID_CHOICE.search(message)
         if m:
-            message = m.group(1) + _did_you_mean(m.group(2), m.group(3).replace("'", "").split(", "))
+            message = m.group(1) + did_you_mean(m.group(2), m.group(3).replace("'", "").split(", "))
         raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
 
 
 _INVALID_CHOICE = re.compile(r"^(argument [^:]+: invalid choice: '(.*)') \(choose from (.*)\)$")
-
-
-def _did_you_mean(word: str, names) -> str:
-    import difflib
-    close = difflib.get_close_matches(word, list(names), n=1, cutoff=0.6)
-    return f"; did you mean {close[0]!r}?" if close else ""
 
 
 def _refuse_unknown(parser: argparse.ArgumentParser, args, extras: list[str]) -> None:
@@ -62,7 +56,7 @@ def _refuse_unknown(parser: argparse.ArgumentParser, args, extras: list[str]) ->
     first = next((e for e in extras if e.startswith("-") and len(e) > 1), None)
     if first is not None:
         options = [o for a in target._actions for o in a.option_strings]
-        message += _did_you_mean(first.split("=", 1)[0], options)
+        message += did_you_mean(first.split("=", 1)[0], options)
     raise UsageError(f"{target.prog}: {message} (see {target.prog} --help)")
 
 

@@ -98,7 +98,11 @@ class ControllerFile:
         """The frame called ``name`` (case-insensitive; KUKA labels too)."""
         found = self.matches(name)
         if not found:
-            raise UcsioError(f"no frame named {name!r} (ucsio frames lists them)", file=self.path)
+            from .errors import did_you_mean
+            names = [f.name for f in self.frames] + [f.label for f in self.frames if f.label]
+            hint = did_you_mean(name.strip(), names)
+            raise UcsioError(f"no frame named {name!r}{hint} (ucsio frames lists them)",
+                             file=self.path)
         distinct = {id(f) for f in found}
         if len(distinct) > 1:
             which = ", ".join(f"{f.name} (line {f.line})" for f in found)

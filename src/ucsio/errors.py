@@ -45,3 +45,14 @@ class RejectedDataset(UcsioError):
     gate (exit 1), not as bad input."""
 
     exit_code = 1
+
+
+def did_you_mean(word: str, names) -> str:
+    """'; did you mean 'X'?' for the real name nearest a mistyped one
+    (compared case-insensitively, as RAPID and KRL names are), or ''."""
+    import difflib
+
+    names = list(dict.fromkeys(str(n) for n in names))
+    folded = {n.casefold(): n for n in names}
+    close = difflib.get_close_matches(str(word).casefold(), list(folded), n=1, cutoff=0.6)
+    return f"; did you mean {folded[close[0]]!r}?" if close else ""

@@ -59,15 +59,12 @@ def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
 def ignored_codes(values: list[str]) -> frozenset:
     """--ignore a,b --ignore c -> {a, b, c}; an unknown code is a usage error
     with the nearest real one suggested (a typo must not silence nothing)."""
-    import difflib
-
     from ..controller import LINT_CODES
-    from ..errors import UsageError
+    from ..errors import UsageError, did_you_mean
     codes = {c.strip().lower() for v in values for c in v.split(",") if c.strip()}
     for c in sorted(codes):
         if c not in LINT_CODES:
-            close = difflib.get_close_matches(c, list(LINT_CODES), n=1)
-            hint = f"; did you mean {close[0]!r}?" if close else " (the README lists the codes)"
+            hint = did_you_mean(c, LINT_CODES) or " (the README lists the codes)"
             raise UsageError(f"ucsio check: --ignore: no lint code {c!r}{hint}")
     return frozenset(codes)
 
