@@ -555,7 +555,8 @@ def test_failure_after_solve_in_every_output(tmp_path, capsys):
     m = _tcp_base_manifest(tmp_path)
     code, out, err = run_cli(["batch", str(m), "--report", str(tmp_path / "r.html"),
                               "--csv", str(tmp_path / "r.csv")], capsys)
-    assert code == 1 and err == ""
+    assert code == 1 and err == (f"wrote {tmp_path / 'r.csv'} (--csv)\n"
+                                 f"wrote {tmp_path / 'r.html'} (--report)\n")
     assert "#TCP" in out and "exit 1: 1 entry failed" in out
     html = (tmp_path / "r.html").read_text()
     assert "#TCP" in html and "at the diff stage" in html
@@ -633,7 +634,10 @@ def test_refused_patch_is_shown(tmp_path, capsys):
     code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir),
                               "--csv", str(tmp_path / "o.csv"), "--report", str(tmp_path / "o.html")],
                              capsys)
-    assert code == 1 and err == ""
+    assert code == 1
+    assert err.splitlines() == [f"wrote {tmp_path / 'o.csv'} (--csv)",       # messages only
+                                f"wrote {tmp_path / 'o.html'} (--report)",
+                                f"no patched copy written under {out_dir}"]
     assert not out_dir.exists() or not any(out_dir.rglob("*.mod"))
     lines = out.splitlines()
     for name in ("good ", "u "):
@@ -644,8 +648,7 @@ def test_refused_patch_is_shown(tmp_path, capsys):
     assert "  good: " + str(tmp_path / "cell.mod") in out and "other.mod" in out
     assert "  u: not written: the patch of entry 'good' in the same file was refused" in out
     assert "patched 0   patch errors 2" in out
-    assert "written (patched copies)" not in out
-    assert f"no patched copy written under {out_dir}" in out
+    assert "wrote" not in out
     assert lines[-1] == "exit 1: 2 patched copies not written (patch errors above)"
     rows = list(csv.DictReader((tmp_path / "o.csv").open()))
     assert all(r["pass"] == "true" and r["patched"] == "" for r in rows)
@@ -660,10 +663,10 @@ def test_written_patch_is_listed(tmp_path, capsys):
     _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(_GOOD)
     out_dir = tmp_path / "patched"
-    code, out, _ = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir)], capsys)
+    code, out, err = run_cli(["batch", str(tmp_path / "m.toml"), "--patch-dir", str(out_dir)], capsys)
     assert code == 0
-    assert f"written (patched copies): 1 file under {out_dir}" in out
-    assert f"  {out_dir / 'cell.mod'}" in out and (out_dir / "cell.mod").is_file()
+    assert f"wrote 1 patched copy under {out_dir}:" in err     # messages on stderr
+    assert f"  {out_dir / 'cell.mod'}" in err and (out_dir / "cell.mod").is_file()
     assert "patched 1   patch errors 0" in out and out.splitlines()[-1] == "exit 0: every entry passed (1)"
 
 

@@ -204,3 +204,78 @@ def test_mistyped_manifest_key_gets_the_nearest(tmp_path):
     assert res.returncode == 1
     (e,) = json.loads(res.stdout)["entries"]
     assert "did you mean 'threshold'" in e["error"]
+
+
+# -------------------------------------------------------------- - for stdin and stdout
+
+KUKA_CSV = FIXTURES / "measurements" / "kuka_base3.csv"
+TCP = "-20.67,89.73,33.44"
+
+
+def test_dash_is_stdin_for_measurement_and_solution_and_stdout_for_o(tmp_path):
+    ref = run("solve", KUKA_CSV, "--tcp", TCP, "--json")
+    assert ref.returncode == 0
+    res = run("solve", "-", "--tcp", TCP, "--json", stdin=KUKA_CSV.read_text())
+    assert res.returncode == 0
+    a, b = json.loads(ref.stdout), json.loads(res.stdout)
+    assert a["frame"] == b["frame"] and a["rms"] == b["rms"]
+    # -o -: the solution on stdout, the readable table on stderr
+    res = run("solve", KUKA_CSV, "--tcp", TCP, "-o", "-")
+    assert res.returncode == 0
+    sol = res.stdout
+    assert json.loads(sol)["frame"] == a["frame"]
+    assert "measured frame" in res.stderr and not (tmp_path / "-").exists()
+    # the solution from stdin into diff and patch; a patched file to stdout
+    dat = tmp_path / "config.dat"
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", dat)
+    before = dat.read_bytes()
+    res = run("diff", dat, "--frame", "BASE_DATA[1]", "--measured", "-", "--json", stdin=sol)
+    assert res.returncode in (0, 1) and json.loads(res.stdout)["measured"]["x"] == \
+        pytest.approx(a["frame"]["x"])
+    res = run("patch", dat, "--frame", "BASE_DATA[1]", "--measured", "-", "-o", "-", stdin=sol)
+    assert res.returncode == 0, res.stderr
+    assert "+BASE_DATA[1]=" in res.stderr and dat.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["config.dat"]
+    (tmp_path / "sol.json").write_text(sol)
+    assert run("patch", dat, "--frame", "BASE_DATA[1]", "--measured", tmp_path / "sol.json",
+               "-o", tmp_path / "out.dat").returncode == 0
+    assert res.stdout == (tmp_path / "out.dat").read_text() != before.decode()
+    # one stdin only
+    res = run("diff", "-", "--frame", "x", "--measured", "-",
+              stdin='{"x": 0, "y": 0, "z": 0, "a": 0, "b": 0, "c": 0}')
+    assert res.returncode == 2 and "already read" in res.stderr
+    res = run("patch", dat, "--frame", "BASE_DATA[1]", "--set", "1,2,3,0,0,0", "-o", "-", "--json")
+    assert res.returncode == 2 and json.loads(res.stdout)["error"]["message"]
+
+
+def test_backup_never_overwrites_a_backup(tmp_path):
+    dat = tmp_path / "config.dat"
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", dat)
+    originals = []
+    for i, x in enumerate((1, 2, 3)):
+        originals.append(dat.read_bytes())
+        res = run("patch", dat, "--frame", "BASE_DATA[1]", "--set", f"{x},0,0,0,0,0",
+                  "--in-place", "--backup")
+        assert res.returncode == 0 and res.stdout.startswith("---")
+        bak = tmp_path / ("config.dat.bak" + (f".{i}" if i else ""))
+        assert f"wrote {dat} (backup {bak})" in res.stderr
+    assert (tmp_path / "config.dat.bak").read_bytes() == originals[0]
+    assert (tmp_path / "config.dat.bak.1").read_bytes() == originals[1]
+    assert (tmp_path / "config.dat.bak.2").read_bytes() == originals[2]
+
+
+# -------------------------------------------------------------- stdout vs stderr
+
+def test_messages_on_stderr_data_on_stdout(tmp_path):
+    sol = tmp_path / "sol.json"
+    res = run("solve", KUKA_CSV, "--tcp", TCP, "-o", sol, "--json")
+    assert json.loads(res.stdout)["accepted"] is True          # stdout: only the JSON
+    assert res.stderr == f"wrote {sol}\n"
+    res = run("solve", KUKA_CSV, "--tcp", TCP, "-o", sol)
+    assert "wrote" not in res.stdout and res.stderr == f"wrote {sol}\n"
+    dat = tmp_path / "config.dat"
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", dat)
+    res = run("patch", dat, "--frame", "BASE_DATA[1]", "--measured", sol, "-o", tmp_path / "out.dat")
+    assert res.stdout.startswith("---") and res.stderr == f"wrote {tmp_path / 'out.dat'}\n"
+    res = run("demo", "--out", tmp_path / "demo")
+    assert "wrote" not in res.stdout and "wrote" in res.stderr

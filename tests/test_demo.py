@@ -70,3 +70,39 @@ def test_demo_gate_and_bad_out(tmp_path):
     (tmp_path / "a_file").write_text("")
     res = run(tmp_path, "--out", str(tmp_path / "a_file"))
     assert res.returncode == 2 and res.stderr.count("\n") == 1 and "--out" in res.stderr
+
+
+def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_path):
+    """issue 11 point 7: the inputs beside the patched files, and every step
+    replayable by hand: replay.sh's commands give the demo's own solution and
+    patched file."""
+    import os
+    import shutil
+    from pathlib import Path
+    r = run(tmp_path, "--out", "out")
+    assert r.returncode == 0, r.stderr
+    assert "wrote" not in r.stdout and r.stderr.count("replay.sh") == 2
+    data = resources.files("ucsio.demo").joinpath("data")
+    bindir = tmp_path / "bin"                     # `ucsio` as a user has it after pip install
+    bindir.mkdir()
+    shim = bindir / "ucsio"
+    shim.write_text(f"#!/bin/sh\nexec {sys.executable} -m ucsio \"$@\"\n")
+    shim.chmod(0o755)
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ['PATH']}", PYTHONPATH=src)
+    for cell in CELLS:
+        folder = tmp_path / "out" / Path(cell.controller).parent.name
+        ctl, meas = Path(cell.controller).name, Path(cell.measurement).name
+        assert (folder / ctl).read_bytes() == data.joinpath(cell.controller).read_bytes()
+        assert (folder / meas).read_bytes() == data.joinpath(cell.measurement).read_bytes()
+        demo_solution = json.loads((folder / "solution.json").read_text())
+        demo_patched = (folder / "patched" / ctl).read_bytes()
+        replay = shutil.copytree(folder, tmp_path / "replay" / folder.name)
+        for p in (replay / "solution.json", replay / "patched" / ctl):
+            p.unlink()
+        res = subprocess.run(["sh", str(replay / "replay.sh")], capture_output=True, text=True,
+                             env=env, timeout=120)
+        assert res.returncode == 0, res.stderr
+        assert json.loads((replay / "solution.json").read_text())["frame"] == demo_solution["frame"]
+        assert (replay / "patched" / ctl).read_bytes() == demo_patched
+        assert f"~ {cell.frame}" in res.stdout or "value changed" in res.stdout

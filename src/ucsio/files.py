@@ -151,7 +151,10 @@ def atomic_write_text(path: str | os.PathLike, text: str) -> None:
 
 def read_bytes(path: str | os.PathLike, what: str = "file") -> bytes:
     """The bytes of ``path``; a missing file, a folder or an unreadable file
-    is one UcsioError naming it (exit 2)."""
+    is one UcsioError naming it (exit 2). ``-`` is standard input (once per
+    run: a second ``-`` would read nothing)."""
+    if os.fspath(path) == "-":
+        return _stdin_bytes(what)
     try:
         with open(path, "rb") as fh:
             return fh.read()
@@ -161,3 +164,19 @@ def read_bytes(path: str | os.PathLike, what: str = "file") -> bytes:
         raise UcsioError(f"is a directory, not a {what}", file=os.fspath(path)) from None
     except OSError as exc:
         raise UcsioError(f"cannot read {what}: {exc.strerror or exc}", file=os.fspath(path)) from None
+
+
+_stdin_read = False
+
+
+def _stdin_bytes(what: str) -> bytes:
+    global _stdin_read
+    import sys
+    if _stdin_read:
+        raise UcsioError(f"standard input is already read: only one input can be - "
+                         f"(the {what})", file="-")
+    _stdin_read = True
+    try:
+        return sys.stdin.buffer.read()
+    except (OSError, AttributeError, ValueError) as exc:
+        raise UcsioError(f"cannot read standard input: {exc}", file="-") from None

@@ -94,19 +94,20 @@ def run(args) -> int:
         emit_json(result.as_dict())
     else:
         print(render(result, patching=args.patch_dir is not None), end="")
-        for opt, path in (("csv", args.csv), ("report", args.report)):
-            if path:
-                print(f"written ({opt}): {path}")
-        if args.patch_dir is not None:
-            copies = sorted({r.patched for r in result.entries if r.patched is not None})
-            if copies:
-                print(f"written (patched copies): {len(copies)} file"
-                      f"{'s' if len(copies) != 1 else ''} under {args.patch_dir}")
-                for c in copies:
-                    print(f"  {c}")
-            else:
-                print(f"no patched copy written under {args.patch_dir}")
         print(verdict(result))
+    # what was written: messages, on stderr (stdout holds the results only)
+    for opt, path in (("csv", args.csv), ("report", args.report)):
+        if path:
+            print(f"wrote {path} (--{opt})", file=sys.stderr)
+    if args.patch_dir is not None:
+        copies = sorted({r.patched for r in result.entries if r.patched is not None})
+        if copies:
+            print(f"wrote {len(copies)} patched cop{'ies' if len(copies) != 1 else 'y'} "
+                  f"under {args.patch_dir}:", file=sys.stderr)
+            for c in copies:
+                print(f"  {c}", file=sys.stderr)
+        else:
+            print(f"no patched copy written under {args.patch_dir}", file=sys.stderr)
     return 0 if result.all_passed else 1
 
 

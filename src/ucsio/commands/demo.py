@@ -1,16 +1,21 @@
 """The whole job on the example cells shipped with ucsio (a KUKA $config.dat and
 an ABB RAPID module, each with a laser-tracker measurement holding one
 blunder): solve, diff against the simulated frame, preview the patch. Nothing
-is written unless --out DIR is given (patched copies go there; the shipped
-files are never changed)."""
+is written unless --out DIR is given: then DIR/<cell>/ holds the cell's inputs
+(controller file, measurement CSV), solution.json, the patched copy under
+patched/, and replay.sh with every step as the ucsio command to type. The
+shipped files are never changed. Exit 1 when a cell fails its gate."""
 from __future__ import annotations
+
+import sys
 
 from .. import defaults
 from ..output import emit_json, fmt, table
 
 
 def add_arguments(p) -> None:
-    p.add_argument("--out", metavar="DIR", help="write the patched controller files into DIR")
+    p.add_argument("--out", metavar="DIR",
+                   help="write each cell's inputs, solution, patched copy and replay.sh into DIR")
     p.add_argument("--tolerance", type=float, default=None, metavar="MM",
                    help="dt_mean below this passes (default 100 mm)")
 
@@ -31,9 +36,13 @@ def run(args) -> int:
     verdict = "every cell passes" if result["ok"] else "a cell failed its gate"
     print(f"demo: {len(result['cells'])} cells, {verdict}.")
     if result["out"]:
-        print(f"patched copies written under {result['out']}")
+        for cell in result["cells"]:
+            print(f"wrote {cell['folder']}: inputs, solution.json, "
+                  + (f"{cell['patch']['written']}, " if cell["patch"]["written"] else "")
+                  + "replay.sh (every step by hand)", file=sys.stderr)
     else:
-        print("nothing written (ucsio demo --out DIR writes the patched copies)")
+        print("nothing written (ucsio demo --out DIR writes the inputs, the solution and the "
+              "patched copies, with the commands to replay every step by hand)")
     return status
 
 
@@ -76,8 +85,6 @@ def print_cell(cell: dict) -> None:
     print()
     print("3. patch preview (only the frame's numbers change)")
     print(indent(cell["patch"]["diff"].rstrip("\n")))
-    if cell["patch"]["written"]:
-        print(f"   written: {cell['patch']['written']}")
 
 
 def indent(text: str, pad: str = "   ") -> str:

@@ -1,17 +1,28 @@
 """Write a frame back into a controller file, in the vendor's native form
 (ABB quaternion, KUKA A, B, C), changing only that frame's numbers.
 
-Without -o or --in-place the unified diff of the patch is printed and nothing
-is written (exit 0). A measured solution is the UCS in robot world; for an
-ABB object frame (NAME.oframe) it is written as uframe^-1 * world.
+Inputs: FILE (a RAPID module or KRL .dat file; not a file inside a .zip
+archive: extract it first), the frame's name, and the values: --measured
+SOLUTION.json (written by `ucsio solve -o`; - reads it from standard input),
+or --set / --set-q.
 
-Refused with exit 2, nothing written: an unknown or ambiguous name, a frame
-with no literal value, a moving user frame (ufprog FALSE), a measured (world)
+Without -o or --in-place the unified diff of the patch is printed and nothing
+is written (exit 0). -o OUT writes the patched file there (-o - to standard
+output, the diff then on stderr); --in-place overwrites FILE, --backup first
+keeps the original as FILE.bak (FILE.bak.1, .2, ... when that exists). A
+measured solution is the UCS in robot world; for an ABB object frame
+(NAME.oframe) it is written as uframe^-1 * world.
+
+Exit 1, nothing written: a rejected solution (its dataset failed the gate:
+measure again; --force writes it anyway).
+
+Exit 2, nothing written: an unknown or ambiguous name, a frame with no
+literal value, a moving user frame (ufprog FALSE), a measured (world)
 solution for a frame that is not relative to world (a robot-held tool, KUKA
 BASE_TYPE #TCP or a base on an external kinematic, an ABB wobj with robhold
 TRUE, an oframe of a moving or robot-held wobj) or a RAPID PERS that another
 module in the same folder also declares (RAPID shares it; --force overrides
-these two), a rejected solution, and a file that changed on disk since it was
+these two), an archive member, and a file that changed on disk since it was
 read. --set and --set-q take the values as given, in the frame's own
 reference (negative values need no "=": --set -5,1,2,0,0,0)."""
 from __future__ import annotations
@@ -34,9 +45,12 @@ def add_arguments(p) -> None:
     p.add_argument("--force", action="store_true",
                    help="write despite a reference mismatch, a shared PERS, or a rejected solution")
     out = p.add_mutually_exclusive_group()
-    out.add_argument("-o", "--output", metavar="OUT", help="write the patched file here")
+    out.add_argument("-o", "--output", metavar="OUT",
+                     help="write the patched file here (- for standard output)")
     out.add_argument("--in-place", action="store_true", help="overwrite FILE (atomically)")
-    p.add_argument("--backup", action="store_true", help="with --in-place: keep FILE.bak")
+    p.add_argument("--backup", action="store_true",
+                   help="with --in-place: keep the original as FILE.bak (never overwriting "
+                        "one: then FILE.bak.1, FILE.bak.2, ...)")
 
 
 def parse_values(text: str, n: int, option: str):
@@ -68,17 +82,29 @@ def target_pose(args):
 
 def run(args) -> int:
     from ..controller import load
-    from ..errors import UcsioError
+    from ..errors import UsageError
+    from ..output import paint_diff
     from ..patch import patch_frame, save
 
     if args.backup and not args.in_place:
-        raise UcsioError("--backup goes with --in-place")
+        raise UsageError("ucsio patch: --backup goes with --in-place")
+    if args.output == "-" and args.json:
+        raise UsageError("ucsio patch: -o - puts the patched file on stdout; it does not "
+                         "go with --json")
     from ..backup import refuse_member
     refuse_member(args.file)
     pose, measured = target_pose(args)
     cf = load(args.file)
     result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,
                          oframe=args.oframe)
+    if args.output == "-":         # the patched file is the data on stdout
+        for w in result.warnings:
+            print(f"ucsio: warning: {w}", file=sys.stderr)
+        sys.stderr.write(paint_diff(result.diff, sys.stderr))
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.new_bytes)
+        sys.stdout.buffer.flush()
+        return 0
     if args.in_place or args.output:
         if result.changed or args.output:
             save(result, args.output, backup=args.backup)
@@ -91,7 +117,7 @@ def run(args) -> int:
         print(f"{result.path}: {result.frame.name} already has these values "
               "at the written precision; nothing to change")
     else:
-        sys.stdout.write(result.diff)
+        sys.stdout.write(paint_diff(result.diff))
     if result.written:
         extra = f" (backup {result.backup})" if result.backup else ""
         print(f"wrote {result.written}{extra}", file=sys.stderr)

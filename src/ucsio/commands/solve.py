@@ -38,7 +38,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         f"from the points' centroid against --threshold (default {defaults.REACH:g})")
     add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
-                   help="write the result as JSON (atomically)")
+                   help="write the result as JSON (atomically); - for standard output "
+                        "(the table then goes to stderr)")
 
 
 def add_source_options(p: argparse.ArgumentParser) -> None:
@@ -125,7 +126,8 @@ def run(args) -> int:
     if args.uncertainty:
         from ..solve import check_sigmas
         check_sigmas(args.sigma_laser, args.sigma_robot)
-    if args.output is not None:
+    to_stdout = args.output == "-"
+    if args.output is not None and not to_stdout:
         folder = os.path.dirname(os.path.abspath(args.output))
         if not os.path.isdir(folder):
             raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
@@ -164,6 +166,11 @@ def run(args) -> int:
     for w in warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
 
+    if to_stdout:                  # -o -: the solution is the data on stdout
+        emit_json(result)
+        if not args.json:
+            print(render(sol), end="", file=sys.stderr)
+        return 0 if sol.accepted else 1
     if args.output is not None:
         buf = io.StringIO()
         json.dump(_clean(result), buf, indent=2, ensure_ascii=False)
@@ -174,8 +181,8 @@ def run(args) -> int:
         emit_json(result)
     else:
         print(render(sol), end="")
-        if args.output is not None:
-            print(f"\nwritten: {args.output}")
+    if args.output is not None:
+        print(f"wrote {args.output}", file=sys.stderr)
     return 0 if sol.accepted else 1
 
 

@@ -4,8 +4,10 @@ Each cell is a controller file with a simulated frame, a measurement file of
 laser/robot point pairs (synthetic: a known true frame, 0.02 mm noise and one
 blunder; fixtures/demo/make_demo.py regenerates them) and the tool that
 carried the reflector. The demo solves, diffs the simulated frame against the
-measured one, and previews the patch as a unified diff; ``out`` writes the
-patched copies (never the shipped files).
+measured one, and previews the patch as a unified diff. ``out`` writes, per
+cell, the inputs (controller file, measurement), the solution and the patched
+copy (never the shipped files), with ``replay.sh``: the same steps as ucsio
+commands, to run by hand.
 """
 from __future__ import annotations
 
@@ -63,15 +65,13 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     sim = cf.frame(cell.frame)
     d = diff_frame(cf, cell.frame, sol.pose, tol)
     result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
-    written = None
-    if out is not None and sol.accepted:
+    written = folder = None
+    if out is not None:
         folder = Path(out) / Path(cell.controller).parent.name
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UcsioError(f"--out: cannot make the folder: {exc.strerror or exc}",
-                             file=str(folder)) from None
-        written = save(result, folder / Path(cell.controller).name)
+        _mkdir(folder / "patched")
+        write_inputs(cell, root, folder, sol)
+        if sol.accepted:
+            written = save(result, folder / "patched" / Path(cell.controller).name)
     label = f"a/{cell.controller}"
     return {
         "cell": cell.name, "vendor": cell.vendor, "story": cell.story,
@@ -85,8 +85,65 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
                                      .replace(f"b/{result.path.lstrip('/')}",
                                               f"b/{cell.controller}"),
                   "written": str(written) if written else None},
+        "folder": str(folder) if folder is not None else None,
         "ok": bool(sol.accepted and d["pass"]),
     }
+
+
+def _mkdir(folder: Path) -> None:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UcsioError(f"--out: cannot make the folder: {exc.strerror or exc}",
+                         file=str(folder)) from None
+
+
+def replay_script(cell: Cell) -> str:
+    """The demo's steps for one cell as the commands a user types."""
+    ctl = Path(cell.controller).name
+    meas = Path(cell.measurement).name
+    q = _sh
+    return "\n".join([
+        "#!/bin/sh",
+        f"# ucsio demo, cell {cell.name}: {cell.story}",
+        "# Every step of the demo by hand, in this folder. The TCP is the reflector",
+        f"# tool {cell.tool} in the controller file.",
+        "set -e",
+        'cd "$(dirname "$0")"',
+        "# 1. solve: Horn's method, leave-one-out outlier exclusion",
+        f"ucsio solve {q(meas)} --tool {q(ctl + ':' + cell.tool)} -o solution.json",
+        "# 2. diff: the simulated frame against the measured one (exit 1 over tolerance)",
+        f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json || true",
+        "# 3. patch: preview, then write a patched copy (the input stays as it is)",
+        f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json",
+        f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json "
+        f"-o {q('patched/' + ctl)}",
+        "# 4. review: every frame of the two files",
+        f"ucsio diff {q(ctl)} {q('patched/' + ctl)}",
+        ""])
+
+
+def _sh(word: str) -> str:
+    import shlex
+    return shlex.quote(word)
+
+
+def write_inputs(cell: Cell, root: Path, folder: Path, sol) -> None:
+    """The cell's inputs as shipped, the solution (as ``solve -o`` writes it)
+    and replay.sh, so every step can be replayed by hand."""
+    import json
+
+    from ..files import atomic_write, atomic_write_text
+    from ..output import _clean
+    for rel in (cell.controller, cell.measurement):
+        atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
+    atomic_write_text(folder / "solution.json",
+                      json.dumps(_clean(sol.as_dict()), indent=2, ensure_ascii=False) + "\n")
+    atomic_write_text(folder / "replay.sh", replay_script(cell))
+    try:
+        os.chmod(folder / "replay.sh", 0o755)
+    except OSError:
+        pass
 
 
 def run_demo(out: str | os.PathLike | None = None,
