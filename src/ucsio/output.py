@@ -21,10 +21,24 @@ def _clean(obj: Any) -> Any:
     return obj
 
 
+def _plain(obj: Any) -> Any:
+    if hasattr(obj, "tolist"):       # numpy arrays and scalars (float64 is a float already)
+        return obj.tolist()
+    raise TypeError(f"{type(obj).__name__} is not JSON serializable")
+
+
 def emit_json(obj: Any, stream=None) -> None:
+    """``obj`` as JSON: indented on a terminal, where a person reads it;
+    otherwise one line from json's C encoder, in one pass (indenting forces
+    the pure-Python encoder: seconds for a 10,000-entry batch)."""
     stream = stream or sys.stdout
-    json.dump(_clean(obj), stream, indent=2, ensure_ascii=False)
-    stream.write("\n")
+    isatty = getattr(stream, "isatty", None)
+    indent = 2 if isatty is not None and isatty() else None
+    try:
+        text = json.dumps(obj, indent=indent, ensure_ascii=False, allow_nan=False, default=_plain)
+    except ValueError:               # a NaN or inf somewhere: those become null
+        text = json.dumps(_clean(obj), indent=indent, ensure_ascii=False)
+    stream.write(text + "\n")
 
 
 def fmt(v: Any, digits: int = 3, none: str = "-") -> str:
