@@ -297,3 +297,32 @@ def test_backup_diff_with_a_changed_unreadable_file_exits_2(two_backups, tmp_pat
 def test_diff_of_a_folder_and_a_file_is_a_usage_error(tmp_path):
     res = run("diff", tmp_path, FIXTURES / "abb" / "variants.mod")
     assert res.returncode == 2 and "both" in res.stderr and res.stderr.count("\n") == 1
+
+
+# -------------------------------------------------------------- start-up
+
+PROBE = """
+import sys, io, contextlib
+from ucsio.cli import main
+with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+    code = main(sys.argv[1:])
+print(__import__("json").dumps({"code": code,
+      "heavy": sorted(m for m in ("numpy", "scipy") if m in sys.modules)}))
+"""
+
+
+def test_backup_commands_stay_light(tmp_path):
+    """Reading folders and archives and diffing backups only reads and
+    lists: no numpy, no scipy; zipfile is imported where an archive is read."""
+    tree = tmp_path / "tree"
+    (tree / "RAPID").mkdir(parents=True)
+    shutil.copy(FIXTURES / "abb" / "variants.mod", tree / "RAPID" / "variants.mod")
+    archive = zip_tree(tree, tmp_path / "a.zip")
+    env = dict(os.environ, PYTHONPATH=SRC)
+    for args in (["frames", tree], ["check", archive], ["diff", tree, archive, "--exit-code"]):
+        res = subprocess.run([sys.executable, "-c", PROBE, *map(str, args)], env=env,
+                             capture_output=True, text=True, check=True)
+        out = json.loads(res.stdout.strip().splitlines()[-1])
+        assert out == {"code": 0, "heavy": []}, (args, out)
+    source = (ROOT / "src" / "ucsio" / "backup.py").read_text()
+    assert "\nimport zipfile" not in source and "    import zipfile" in source

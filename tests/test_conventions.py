@@ -279,3 +279,83 @@ def test_messages_on_stderr_data_on_stdout(tmp_path):
     assert res.stdout.startswith("---") and res.stderr == f"wrote {tmp_path / 'out.dat'}\n"
     res = run("demo", "--out", tmp_path / "demo")
     assert "wrote" not in res.stdout and "wrote" in res.stderr
+
+
+# -------------------------------------------------------------- colour
+
+def run_on_terminal(*args, env=None):
+    """The command with stdout on a pseudo-terminal, as a user sees it."""
+    import os
+    import pty
+    master, slave = pty.openpty()
+    e = dict(os.environ, PYTHONPATH=SRC, TERM="xterm")
+    e.pop("NO_COLOR", None)
+    e.update(env or {})
+    proc = subprocess.Popen([sys.executable, "-m", "ucsio", *map(str, args)], stdout=slave,
+                            stderr=subprocess.PIPE, env=e)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            data = os.read(master, 65536)
+        except OSError:          # the terminal closed: the command ended
+            break
+        if not data:
+            break
+        chunks.append(data)
+    proc.wait(timeout=60)
+    os.close(master)
+    return proc.returncode, b"".join(chunks).decode()
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals are POSIX")
+def test_colour_on_a_terminal_only_and_never_with_no_color(tmp_path):
+    sol = tmp_path / "sol.json"
+    assert run("solve", KUKA_CSV, "--tcp", TCP, "-o", sol).returncode == 0
+    dat = FIXTURES / "kuka" / "cell_config.dat"
+    args = ("diff", dat, "--frame", "BASE_DATA[1]", "--measured", sol, "--tolerance", "1")
+    rc, out = run_on_terminal(*args)
+    assert rc == 1 and "\033[1;31mFAIL\033[0m" in out
+    rc, out = run_on_terminal("patch", dat, "--frame", "BASE_DATA[1]", "--measured", sol)
+    assert rc == 0 and "\033[32m+BASE_DATA[1]=" in out and "\033[31m-BASE_DATA[1]=" in out
+    rc, out = run_on_terminal("solve", KUKA_CSV, "--tcp", TCP)
+    assert rc == 0 and "\033[32maccepted\033[0m" in out
+    for env in ({"NO_COLOR": "1"}, {"TERM": "dumb"}):
+        rc, out = run_on_terminal(*args, env=env)
+        assert rc == 1 and "FAIL" in out and "\033[" not in out
+    res = run(*args)                                    # piped
+    assert res.returncode == 1 and "FAIL" in res.stdout and "\033[" not in res.stdout
+
+
+# -------------------------------------------------------------- --help tells the truth
+
+def test_patch_help_and_exit_status_agree_on_a_rejected_solution(tmp_path):
+    """patch --help said a rejected solution exits 2; it is a failed gate, 1."""
+    help_text = " ".join(run("patch", "--help").stdout.split())
+    assert "Exit 1, nothing written: a rejected solution" in help_text
+    sol = tmp_path / "rejected.json"
+    res = run("solve", KUKA_CSV, "--tcp", TCP, "--min-points", "20", "-o", sol)
+    assert res.returncode == 1 and json.loads(sol.read_text())["accepted"] is False
+    dat = tmp_path / "config.dat"
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", dat)
+    before = dat.read_bytes()
+    res = run("patch", dat, "--frame", "BASE_DATA[1]", "--measured", sol, "--in-place")
+    assert res.returncode == 1 and dat.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["config.dat", "rejected.json"]
+
+
+@pytest.mark.parametrize("command, inputs", [
+    ("frames", ["FILE", "backup folder", ".zip archive"]),
+    ("check", ["FILE", "backup folder", ".zip archive", "--ignore"]),
+    ("solve", ["MEAS.csv", "laser_x", "--laser", "--robot", "--tcp", "--tool"]),
+    ("diff", ["SOLUTION.json", "OLD NEW", "folders or .zip archives", "--exit-code"]),
+    ("patch", ["FILE", "--frame", "--measured", "--set", "standard input"]),
+    ("batch", ["MANIFEST.toml", "measurement, controller, frame"]),
+    ("demo", ["--out", "replay.sh"]),
+])
+def test_every_help_names_its_inputs(command, inputs):
+    res = run(command, "--help")
+    assert res.returncode == 0
+    text = " ".join(res.stdout.split())
+    for word in inputs:
+        assert word in text, (command, word)

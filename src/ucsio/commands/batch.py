@@ -15,7 +15,10 @@ from . import add_uncertainty_options
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("manifest", metavar="MANIFEST.toml")
+    p.add_argument("manifest", metavar="MANIFEST.toml",
+                   help="[defaults] and [[entry]] tables: name, measurement, controller, frame, "
+                        "tcp or tool, threshold, min_points, tolerance, ... (README: Batch "
+                        "manifest)")
     p.add_argument("--csv", metavar="FILE", default=None, help="write one row per entry")
     p.add_argument("--report", metavar="FILE.html", default=None,
                    help="write a self-contained HTML report (tables, inline SVG charts)")
@@ -94,7 +97,8 @@ def run(args) -> int:
         emit_json(result.as_dict())
     else:
         print(render(result, patching=args.patch_dir is not None), end="")
-        print(verdict(result))
+        from ..output import paint
+        print(paint(verdict(result), "pass" if result.all_passed else "fail"))
     # what was written: messages, on stderr (stdout holds the results only)
     for opt, path in (("csv", args.csv), ("report", args.report)):
         if path:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 
 from .. import defaults
-from ..output import emit_json, fmt, table
+from ..output import emit_json, fmt, paint, paint_diff, table
 
 
 def add_arguments(p) -> None:
@@ -70,7 +70,7 @@ def print_cell(cell: dict) -> None:
     threshold = s.get("settings", {}).get("threshold", defaults.THRESHOLD)
     print(f"   {s['n_used']} of {s['n_points']} points used, rms {s['rms']:.3f} mm, "
           f"max {s['max']:.3f} mm (threshold {threshold:g} mm): "
-          + ("accepted" if s["accepted"] else "REJECTED: measure again"))
+          + (paint("accepted", "pass") if s["accepted"] else paint("REJECTED: measure again", "fail")))
     print()
     print("2. diff: measured - simulated")
     sim, mea = d["simulated"], d["measured"]
@@ -80,11 +80,11 @@ def print_cell(cell: dict) -> None:
              *(f"{d[k]:+.4f}" for k in ("da", "db", "dc"))]]
     print(indent(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6})))
     print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
-          f"group {d['group']}, {'PASS' if d['pass'] else 'FAIL'} "
+          f"group {d['group']}, {paint('PASS', 'pass') if d['pass'] else paint('FAIL', 'fail')} "
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
     print()
     print("3. patch preview (only the frame's numbers change)")
-    print(indent(cell["patch"]["diff"].rstrip("\n")))
+    print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))
 
 
 def indent(text: str, pad: str = "   ") -> str:

@@ -35,9 +35,11 @@ def add_arguments(p) -> None:
     import argparse
     p.formatter_class = argparse.RawDescriptionHelpFormatter   # keep the forms on their lines
     p.add_argument("files", nargs="*", metavar="FILE",
-                   help="FILE (with --frame), OLD NEW, or git's seven arguments")
+                   help="FILE (with --frame), OLD NEW (two controller files, or two backup "
+                        "folders or .zip archives), or git's seven arguments")
     p.add_argument("--frame", metavar="NAME", help="the frame to compare with --measured")
-    p.add_argument("--measured", metavar="SOLUTION.json", help="written by `ucsio solve -o`")
+    p.add_argument("--measured", metavar="SOLUTION.json",
+                   help="written by `ucsio solve -o`; - for standard input")
     p.add_argument("--tolerance", type=float, default=None, metavar="MM",
                    help="dt_mean below this passes (default 100 mm)")
     p.add_argument("--oframe", action="store_true", help="ABB: the object frame of the wobj")
@@ -155,7 +157,8 @@ def _one_frame(args) -> int:
     label = f" ({d['label']})" if d.get("label") else ""
     print(f"{d['name']}{label}  {d['type']}  {d['file']}:{d['line']}")
     print(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6}))
-    verdict = "PASS" if d["pass"] else "FAIL"
+    from ..output import paint
+    verdict = paint("PASS", "pass") if d["pass"] else paint("FAIL", "fail")
     print(f"angle {d['angle']:.4f} deg  dist {d['dist']:.3f} mm  dt_mean {d['dt_mean']:.3f} mm  "
           f"group {d['group']}  {verdict} (tolerance {tol:g} mm)")
     if args.points:

@@ -1,7 +1,13 @@
 """Fit the measured UCS to laser/robot point pairs (Horn's closed form),
-with leave-one-out outlier exclusion. Exit 0 accepted, 1 rejected (too few
-points left, or residuals over the threshold that exclusion cannot resolve;
-the reason is printed), 2 bad input."""
+with leave-one-out outlier exclusion.
+
+Inputs: MEAS.csv (laser and robot sides in one CSV), or --laser FILE and
+--robot FILE (the files they live in, paired by point name); and the TCP:
+--tcp X,Y,Z, --tool FILE:NAME or --tcp solve.
+
+Exit 0 accepted; 1 rejected (fewer than --min-points left after exclusion,
+or points that do not pin the frame down: the reason is printed); 2 bad
+input. -o writes the solution JSON that diff and patch read."""
 from __future__ import annotations
 
 import argparse
@@ -16,7 +22,9 @@ from ..files import atomic_write_text
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("measurement", metavar="MEAS.csv", nargs="?", default=None,
-                   help="measurement file (see SPEC: Measurement files); or --laser and --robot")
+                   help="measurement CSV: point, laser_x/y/z, robot_x/y/z, the flange orientation "
+                        "(robot_a/b/c, robot_q1..q4 or robot_w/p/r), weight (README: "
+                        "Measurement files); - for standard input; or --laser and --robot")
     add_source_options(p)
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z|solve", default=None,
@@ -169,7 +177,7 @@ def run(args) -> int:
     if to_stdout:                  # -o -: the solution is the data on stdout
         emit_json(result)
         if not args.json:
-            print(render(sol), end="", file=sys.stderr)
+            print(render(sol, sys.stderr), end="", file=sys.stderr)
         return 0 if sol.accepted else 1
     if args.output is not None:
         buf = io.StringIO()
@@ -186,8 +194,10 @@ def run(args) -> int:
     return 0 if sol.accepted else 1
 
 
-def render(sol) -> str:
-    from ..output import fmt, table
+def render(sol, stream=None) -> str:
+    """The readable report; the verdict coloured when ``stream`` (default
+    stdout) is a terminal."""
+    from ..output import fmt, paint, table
 
     f = sol.pose
     a, b, c = f.abc
@@ -232,9 +242,10 @@ def render(sol) -> str:
         lines.append(table(["", "unit", "std", "ci95", "analytical std"], urows, right={2, 4}))
     lines.extend(f"warning: {w}" for w in sol.warnings)
     if sol.diagnosis:                 # not the measurement's fault: no "measure again"
-        lines.append(f"REJECTED: {sol.reason}")
+        lines.append(paint(f"REJECTED: {sol.reason}", "fail", stream))
     else:
-        lines.append("accepted" if sol.accepted else f"REJECTED: {sol.reason}; measure again")
+        lines.append(paint("accepted", "pass", stream) if sol.accepted else
+                     paint(f"REJECTED: {sol.reason}; measure again", "fail", stream))
     return "\n".join(lines) + "\n"
 
 
