@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from conftest import CORPUS, FIXTURES, corpus_file
+from conftest import CORPUS, FIXTURES, corpus_file, corpus_files
 from ucsio.cli import main
 
 TAUGHT = FIXTURES / "taught"
@@ -260,3 +260,25 @@ def test_points_needs_frame_and_measured():
     code, _, err = run("diff", TAUGHT / "abb" / "Cell.mod", TAUGHT / "abb" / "Cell.mod",
                        "--points")
     assert code == 2 and "--points go with --frame and --measured" in err
+
+
+@pytest.mark.parametrize("path", [p for p in corpus_files("kuka")
+                                  if p.values[0] is None or p.values[0].suffix == ".dat"])
+def test_positions_fast_path_equals_the_full_parse(path):
+    """diff --points reads a tree's .dat files on the fast path (position and
+    FDAT lines only); it must find what the whole-file parse finds."""
+    from ucsio.document import Document
+    from ucsio.errors import UcsioError
+    from ucsio.krl import positions
+
+    doc = Document.read(path)
+
+    def seen(full):
+        try:
+            return [(p.name, p.type, p.line, p.col, p.pose, p.fdat, p.tool_no, p.base_no,
+                     p.ipo_frame, p.problem and p.problem.message)
+                    for p in positions(doc, full=full)]
+        except UcsioError as exc:
+            return str(exc)
+
+    assert seen(False) == seen(True)

@@ -930,14 +930,30 @@ class Position(Value):
         return self.name[1:] if self.name[:1] in "Xx" and len(self.name) > 1 else self.name
 
 
-def positions(doc: Document) -> list[Position]:
+# the declaration lines positions() needs on the fast path
+_POSITION_LINE = re.compile(r"\n(" + _MODS + r"(?:E6POS|POS|FRAME|FDAT)" + _WS + r"[^\n]*)", re.I)
+
+
+def positions(doc: Document, full: bool = True) -> list[Position]:
     """Every E6POS, POS and FRAME declared with a value, in file order, each
     with its FDAT (``X<name>`` pairs with ``F<name>``, the inline forms'
-    naming). The whole file goes through the grammar (``check``'s path): a
-    measurement program is short, and a syntax error anywhere must not go
-    unseen. A position whose X, Y, Z, A, B or C is missing or not a number
-    has no pose and a ``problem`` (file:line:col) for whoever needs it."""
-    tree = _parse(doc, doc.text, "file")
+    naming). By default the whole file goes through the grammar (``check``'s
+    path): a measurement program is short, and a syntax error anywhere must
+    not go unseen. ``full=False`` is the fast path's way (``diff --points``
+    reading every .dat of a controller's tree): only the position and FDAT
+    lines and the layout lines, the rest blanked. A position whose X, Y, Z,
+    A, B or C is missing or not a number has no pose and a ``problem``
+    (file:line:col) for whoever needs it."""
+    if full:
+        tree = _parse(doc, doc.text, "file")
+    else:
+        text = doc.text
+        nl_text = "\n" + text
+        spans = [(m.start(1) - 1, m.end(1) - 1) for m in _POSITION_LINE.finditer(nl_text)]
+        if not spans:
+            return []
+        spans += _layout_lines(text, nl_text)
+        tree = _parse(doc, masked(text, sorted(set(spans))), "file")
     found: list[tuple[str, str, Any, int]] = []
     fdats: dict[str, tuple[dict, int]] = {}
     for s in _statements(tree, doc):

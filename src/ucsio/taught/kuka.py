@@ -9,9 +9,9 @@ differently). Points are searched in every .dat file of the controller's
 tree: the KRC folder around $config.dat (KRC/R1/System/$config.dat ->
 KRC/), else R1/ for R1/System/$config.dat, else the file's own folder.
 
-Each .dat is read as the fast path reads frames: the E6POS/POS/FDAT
-declaration lines and the layout lines kept, the rest blanked, one Lark
-parse of the masked text (grammars/krl.lark, start ``file``).
+Each .dat is read by ``krl.positions`` (the reader ``solve --robot`` uses) on
+the fast path: the position and FDAT declaration lines and the layout lines
+kept, the rest blanked, one Lark parse of the masked text.
 """
 from __future__ import annotations
 
@@ -26,9 +26,6 @@ from ..errors import UcsioError
 from ..frames import Frame
 from . import Found, TaughtPoint
 
-_WS = r"[ \t\f\r]"
-_POINT_LINE = re.compile(r"\n(" + _WS + r"*(?:(?:DECL|GLOBAL|CONST)" + _WS + r"+)*"
-                         r"(?:E6POS|POS|FDAT)" + _WS + r"[^\n]*)", re.I)
 _BASE_ENTRY = re.compile(r"BASE_DATA\[(\d+)\]\Z", re.I)
 MAX_DEPTH = 3        # how far up from $config.dat a KRC folder is looked for
 
@@ -59,53 +56,22 @@ def _shown(path: Path) -> Path:
     return Path(rel) if not rel.startswith("..") else path
 
 
-def declarations(doc: Document) -> list[tuple[str, str, int, object]]:
-    """(type, name, line, value) of every E6POS, POS and FDAT declared with a
-    value (scalars; arrays are filled element by element and carry no FDAT)."""
-    text = doc.text
-    nl_text = "\n" + text
-    spans = [(m.start(1) - 1, m.end(1) - 1) for m in _POINT_LINE.finditer(nl_text)]
-    if not spans:
-        return []
-    spans += krl._layout_lines(text, nl_text)
-    tree = krl._parse(doc, krl.masked(text, sorted(set(spans))), "file")
-    out = []
-    for s in krl._statements(tree, doc):
-        if s.kind != "decl" or s.type not in ("E6POS", "POS", "FDAT"):
-            continue
-        for name, dims, val in s.vars:
-            if dims is None and val is not None:
-                out.append((s.type, name.value, s.line, krl._value(val)))
-    return out
-
-
-def _number(fields: dict, key: str):
-    got = fields.get(key)
-    if got is None or got[1].kind != "number":
-        return None
-    return got[1].value
-
-
 def points_in(doc: Document, base_no: int, found: Found) -> None:
-    decls = declarations(doc)
-    fdat = {name.upper(): v for t, name, _, v in decls if t == "FDAT" and v.kind == "struct"}
-    for t, name, line, v in decls:
-        if t == "FDAT" or v.kind != "struct" or not name.upper().startswith("X"):
+    """The E6POS/POS of ``doc`` whose FDAT has BASE_NO ``base_no`` (krl.positions,
+    the same reader as ``solve --robot``, on the fast path)."""
+    for p in krl.positions(doc, full=False):
+        if p.type not in ("E6POS", "POS") or p.base_no != base_no:
             continue
-        f = fdat.get("F" + name[1:].upper())
-        if f is None or _number(f.value, "BASE_NO") != base_no:
-            continue
-        ipo = f.value.get("IPO_FRAME")
-        if ipo is not None and ipo[1].kind == "enum" and ipo[1].value == "#TCP":
-            found.warnings.append(f"{doc.path}:{line}: {name} is taught with IPO_FRAME #TCP "
+        if p.ipo_frame == "#TCP":
+            found.warnings.append(f"{doc.path}:{p.line}: {p.name} is taught with IPO_FRAME #TCP "
                                   "(an external TCP): not counted")
             continue
-        xyz = tuple(_number(v.value, k) for k in "XYZ")
-        if None in xyz:
-            found.warnings.append(f"{doc.path}:{line}: {name} has no complete X, Y, Z: "
+        if p.pose is None:
+            found.warnings.append(f"{doc.path}:{p.line}: {p.name} has no complete value "
+                                  f"({p.problem.message if p.problem else 'no X, Y, Z'}): "
                                   "not counted")
             continue
-        found.points.append(TaughtPoint(name, doc.path, line, xyz))  # type: ignore[arg-type]
+        found.points.append(TaughtPoint(p.name, doc.path, p.line, p.pose.t, p.pose.q))
 
 
 def find(cf: ControllerFile, frame: Frame, load=None) -> Found:
