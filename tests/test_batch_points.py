@@ -65,7 +65,9 @@ def fleet(tmp_path_factory):
         "[[entry]]\nname = \"abb table\"\nmeasurement = \"table.csv\"\n"
         "controller = \"cell_abb/Cell.mod\"\nframe = \"wobjTable\"\n\n"
         "[[entry]]\nname = \"abb table, no points\"\nmeasurement = \"table.csv\"\n"
-        "controller = \"cell_abb/Cell.mod\"\nframe = \"wobjTable\"\npoints = false\n")
+        "controller = \"cell_abb/Cell.mod\"\nframe = \"wobjTable\"\npoints = false\n\n"
+        "[[entry]]\nname = \"abb other\"\nmeasurement = \"table.csv\"\n"
+        "controller = \"cell_abb/Cell.mod\"\nframe = \"wobjOther\"\ntolerance = 5000\n")
     code, out = run("batch", root / "manifest.toml", "--json", "--csv", root / "out.csv",
                     "--report", root / "report.html")
     assert code == 0, out
@@ -83,7 +85,7 @@ def _moved(sim_chain, true_chain, p):
 
 def test_entries_carry_points_moved(fleet):
     _, data = fleet
-    kuka, abb, off = data["entries"]
+    kuka, abb, off, other = data["entries"]
     # KUKA: XP2 (2000 mm out) moves most; four points taught in base 3
     sim = [(Rotation.from_euler("ZYX", [30, -2.5, 1.2], degrees=True),
             np.array([1500.0, -250.0, 600.0]))]
@@ -103,7 +105,13 @@ def test_entries_carry_points_moved(fleet):
     assert abb["points_moved"]["max"] == pytest.approx(
         _moved([u, o], [wobj_truth(), o], (2000, 0, 0)), abs=1e-6)
     assert "points_moved" not in off
-    assert [e["station"] for e in data["entries"]] == ["line 1", "cell_abb", "cell_abb"]
+    # the same folder's modules, read once in the run, for another work object
+    assert other["points_moved"]["count"] == 1 and other["points_moved"]["worst"] == "pElsewhere"
+    u_other = (Rotation.identity(), np.array([0, 900, 0.0]))
+    assert other["points_moved"]["max"] == pytest.approx(
+        _moved([u_other], [wobj_truth()], (10, 10, 10)), abs=1e-6)
+    assert [e["station"] for e in data["entries"]] == ["line 1", "cell_abb", "cell_abb",
+                                                      "cell_abb"]
 
 
 def test_csv_and_text_carry_points_moved(fleet):

@@ -282,3 +282,37 @@ def test_positions_fast_path_equals_the_full_parse(path):
             return str(exc)
 
     assert seen(False) == seen(True)
+
+
+@pytest.mark.skipif(not (CORPUS / "abb").is_dir(), reason="the shared corpus is absent")
+def test_plain_robtargets_read_without_lark_equal_the_grammars_reading():
+    """A robtarget in the controller's plain form is read with a strict regex
+    (a path module has thousands); on every corpus robtarget it gives what
+    the grammar gives, and anything it does not take goes to the grammar."""
+    from ucsio import rapid
+    from ucsio.document import Document
+    from ucsio.taught import abb
+
+    fast = slow = 0
+    for path in sorted((CORPUS / "abb").iterdir()):
+        try:
+            mod = abb._read_module(Document.read(path))
+        except Exception:   # encrypted modules
+            continue
+        for _, region in mod.targets:
+            m = abb._LITERAL_TARGET.match(mod.doc.text, region.span.start, region.span.end)
+            compact = rapid.Compact(mod.doc, sorted(mod.brackets + [region],
+                                                    key=lambda r: r.span.start))
+            tree = rapid.parse_tree(mod.doc, compact.text, compact)
+            compact.remap(tree)
+            (decl,) = rapid.declarations(mod.doc, tree)
+            if m is None:
+                slow += 1
+                continue
+            fast += 1
+            lit = abb._LiteralTarget(m, mod.doc)
+            assert (lit.name, lit.scope) == (decl.name, decl.scope)
+            assert abb._target(lit.value)[0] == abb._target(decl.value)[0]
+            assert abb._target(lit.value)[1] == abb._target(decl.value)[1]
+            assert mod.doc.line_of(lit.start) == mod.doc.line_of(rapid._start_of(decl.value, 0))
+    assert fast > 1000 and slow > 0

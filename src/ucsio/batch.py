@@ -571,13 +571,14 @@ def _taught_points(results: list[EntryResult], frames: dict) -> None:
     from .taught import find_points, points_moved
 
     found: dict[int, Any] = {}
+    files: dict = {}            # each module or .dat read once per run
     for k, r in enumerate(results):
         if not (r.entry.points and r.accepted and k in frames):
             continue
         cf, frame = frames[k]
         try:
             if id(frame) not in found:
-                found[id(frame)] = find_points(cf, frame)
+                found[id(frame)] = find_points(cf, frame, files)
             got = points_moved(cf, frame, r.solution.pose, found[id(frame)])
         except UcsioError as exc:
             r.points_error = str(exc)

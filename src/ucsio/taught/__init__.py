@@ -17,7 +17,7 @@ moved = |T_measured p - T_simulated p| in world, mm.
 from __future__ import annotations
 
 import math
-from typing import Any, Callable
+from typing import Any
 
 from ..controller import ControllerFile
 from ..errors import UcsioError
@@ -50,14 +50,14 @@ class Found(Value):
         self.warnings = warnings if warnings is not None else []
 
 
-def find_points(cf: ControllerFile, frame: Frame,
-                load: Callable[[str], ControllerFile] | None = None) -> Found:
-    """The points taught in ``frame`` (of ``cf``), read from the files around it."""
+def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
+    """The points taught in ``frame`` (of ``cf``), read from the files around it;
+    ``cache`` (any dict kept for a run, as ``batch`` does) reads each file once."""
     if frame.vendor == "abb":
         from . import abb
-        return abb.find(cf, frame, load)
+        return abb.find(cf, frame, cache)
     from . import kuka
-    return kuka.find(cf, frame, load)
+    return kuka.find(cf, frame, cache)
 
 
 def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose], list[Pose]]:

@@ -21,6 +21,7 @@ parameter, another task's data) is a warning, never a silent zero.
 """
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 
@@ -45,6 +46,25 @@ _LEAD = re.compile(_GAP)
 _ROUTINE_HEAD = re.compile(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
                            + _GAP + r"\w+" + _GAP + r"(?:\([^)]*\))?", re.I)
 _OFFSET_FUNCS = {"offs", "reltool"}
+# A robtarget written out in the controller's own plain form (no comment or
+# expression inside): a strict subset of what the grammar accepts, read
+# without Lark, as a path module's thousands of targets need. Anything else
+# goes through the grammar.
+_S = r"[ \t\f\r\n]*"
+_NUM = r"([-+]?)" + _S + r"((?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?![\w.])"
+_BARE = r"[-+]?" + _S + r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?(?![\w.])"
+
+
+def _nums(k: int) -> str:
+    return r"\[" + _S + (_S + "," + _S).join([_NUM] * k) + _S + r"\]"
+
+
+_ANY_NUMS = r"\[" + _S + _BARE + r"(?:" + _S + "," + _S + _BARE + r")*" + _S + r"\]"
+_LITERAL_TARGET = re.compile(
+    _GAP + r"(?:(LOCAL|TASK)[ \t\f\r\n]+)?(?:PERS|CONST|VAR)[ \t\f\r\n]+robtarget[ \t\f\r\n]+"
+    r"([A-Za-z_][A-Za-z0-9_]*)" + _S + ":=" + _S + r"\[" + _S + _nums(3) + _S + "," + _S
+    + _nums(4) + _S + "," + _S + _ANY_NUMS + _S + "," + _S + _ANY_NUMS + _S + r"\]" + _S + r";\Z",
+    re.I)
 # instructions whose first argument is the cartesian target (not MoveAbsJ,
 # MoveExtJ: joint targets; not SearchL: a signal comes first)
 _CARTESIAN_MOVE = re.compile(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
@@ -67,6 +87,26 @@ def _wobj_name(frame: Frame) -> str:
     return name
 
 
+class _LiteralTarget:
+    """A robtarget declaration read by ``_LITERAL_TARGET``: what the rest of
+    this module reads of a rapid.Decl (name, scope, start, dims, value)."""
+
+    dims = None
+
+    def __init__(self, m: re.Match, doc: Document):
+        self.scope = m.group(1).upper() if m.group(1) else None
+        self.name = m.group(2)
+        nums = []
+        for k in range(7):
+            sign, digits = m.group(3 + 2 * k), m.group(4 + 2 * k)
+            start = m.start(3 + 2 * k) if sign else m.start(4 + 2 * k)
+            value = float(digits) * (-1.0 if sign == "-" else 1.0)
+            nums.append(Number(Span(start, m.end(4 + 2 * k)), doc.text[start:m.end(4 + 2 * k)],
+                               value))
+        self.start = nums[0].span.start
+        self.value = [nums[:3], nums[3:], [], []]
+
+
 class _Module:
     """One module's robtarget declarations and \\WObj statements."""
 
@@ -77,20 +117,33 @@ class _Module:
         self.statements = []            # (tree or None where unreadable, span)
         self.brackets: list[rapid.Region] = []              # MODULE ..., ENDMODULE
         self.targets: list[tuple[str, rapid.Region]] = []   # robtarget declarations, by name
+        self.parsed: set[str] = set()   # names whose declarations are in ``decls``
 
     def parse_targets(self, names: set[str]) -> None:
         """Parse the robtarget declarations called one of ``names`` (casefolded),
         all in one Lark call, as the fast path parses frame declarations: a
-        path module's thousand targets cost nothing unless a move uses them."""
-        keep = [r for name, r in self.targets if name in names]
+        path module's thousand targets cost nothing unless a move uses them.
+        Names parsed before (another frame of the same folder) are not again."""
+        new = names - self.parsed
+        self.parsed |= new
+        keep = []
+        text = self.doc.text
+        for name, r in self.targets:
+            if name not in new:
+                continue
+            m = _LITERAL_TARGET.match(text, r.span.start, r.span.end)
+            if m is not None:
+                self.decls.append(_LiteralTarget(m, self.doc))
+            else:
+                keep.append(r)
         if not keep:
             return
         regions = sorted(self.brackets + keep, key=lambda r: r.span.start)
         compact = rapid.Compact(self.doc, regions)
         tree = rapid.parse_tree(self.doc, compact.text, compact)
         compact.remap(tree)
-        self.decls = [d for d in rapid.declarations(self.doc, tree)
-                      if d.type.casefold() == "robtarget"]
+        self.decls += [d for d in rapid.declarations(self.doc, tree)
+                       if d.type.casefold() == "robtarget"]
 
 
 def _read_module(doc: Document) -> _Module:
@@ -212,7 +265,28 @@ def _target(value) -> tuple[tuple[float, float, float], tuple] | None:
     return tuple(c.value for c in t), quat
 
 
-def find(cf: ControllerFile, frame: Frame, load=None) -> Found:
+def _module(path: Path, cf: ControllerFile, frame: Frame, cache: dict | None) -> _Module:
+    """A module of the folder, read once per run where ``cache`` is given."""
+    key = ("abb", os.path.abspath(path))
+    if cache is not None and key in cache:
+        got = cache[key]
+        if isinstance(got, UcsioError):
+            raise got
+        return got
+    try:
+        doc = cf.document if Path(path).resolve() == Path(frame.file).resolve() \
+            else Document.read(path)
+        got = _read_module(doc)
+    except UcsioError as exc:
+        if cache is not None:
+            cache[key] = exc
+        raise
+    if cache is not None:
+        cache[key] = got
+    return got
+
+
+def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
     found = Found()
     if frame.type != "wobjdata":
         found.warnings.append(f"{frame.name} is a {frame.type}, not a work object: no taught "
@@ -222,9 +296,7 @@ def find(cf: ControllerFile, frame: Frame, load=None) -> Found:
     modules = []
     for path in _modules(frame):
         try:
-            doc = cf.document if Path(path).resolve() == Path(frame.file).resolve() \
-                else Document.read(path)
-            modules.append(_read_module(doc))
+            modules.append(_module(path, cf, frame, cache))
         except UcsioError as exc:
             found.warnings.append(f"could not read {path} ({exc}); its points are not counted")
     wanted = {str(tok).casefold() for mod in modules for tree, _ in mod.statements
