@@ -1,0 +1,66 @@
+"""The README documents what ucsio does (issue 11 point 7): its first line is
+a virtual-environment line, the measurement CSV example is read as written,
+the manifest example names every key batch accepts and is a valid manifest,
+every lint code is in the table, and the backup review is shown."""
+from __future__ import annotations
+
+import re
+import tomllib
+
+from conftest import ROOT
+
+README = (ROOT / "README.md").read_text()
+
+
+def code_blocks(lang: str) -> list[str]:
+    return re.findall(r"```" + lang + r"\n(.*?)```", README, re.S)
+
+
+def test_first_command_makes_a_virtual_environment():
+    first = code_blocks("sh")[0].splitlines()[0]
+    assert first.startswith("python -m venv .venv && . .venv/bin/activate && ")
+    assert first.endswith("python -m pip install . && ucsio demo")
+    assert "ucsio demo --out DIR" in README and "replay.sh" in README
+
+
+def test_measurement_example_is_read_as_written(tmp_path):
+    from ucsio.measurement import KNOWN, read_measurement
+    (csv,) = code_blocks("csv")
+    path = tmp_path / "points.csv"
+    path.write_text(csv)
+    m = read_measurement(path)
+    assert m.names == ["P1", "P2"] and m.form == "kuka"
+    assert m.laser[1].tolist() == [800.0, 0.0, 0.0] and m.weights.tolist() == [1.0, 1.0]
+    section = README.split("### Measurement files", 1)[1].split("\n### ", 1)[0]
+    documented = set(re.findall(r"`([a-z_0-9]+)`", section))
+    if "`robot_q1` … `robot_q4`" in section:
+        documented |= {"robot_q2", "robot_q3"}
+    assert KNOWN <= documented, KNOWN - documented      # every column the reader knows
+
+
+def test_manifest_example_names_every_key_and_is_valid():
+    from ucsio import batch
+    blocks = [b for b in code_blocks("toml") if "[[entry]]" in b]
+    example = max(blocks, key=len)
+    data = tomllib.loads(example)
+    keys = set(data["defaults"]) | {k for e in data["entry"] for k in e}
+    assert set(batch.ENTRY_KEYS) <= keys, set(batch.ENTRY_KEYS) - keys
+    batch._check_table(data["defaults"], "[defaults]", batch.DEFAULT_KEYS, "README")
+    batch._check_values(data["defaults"], "[defaults]", "README")
+    for e in data["entry"]:
+        batch._check_table(e, "[[entry]]", batch.ENTRY_KEYS, "README")
+        batch._check_values(e, "[[entry]]", "README")
+
+
+def test_every_lint_code_is_in_the_table():
+    from ucsio.controller import LINT_CODES
+    section = README.split("### Lint codes", 1)[1].split("\n### ", 1)[0]
+    for code in LINT_CODES:
+        assert f"`{code}`" in section, code
+
+
+def test_commands_section_shows_a_backup_to_backup_review():
+    commands = README.split("## Commands", 1)[1].split("\n## ", 1)[0]
+    assert "ucsio diff   backup_2026-11-30/ backup_2026-12-01/ --exit-code" in commands
+    assert "$ ucsio diff backup_old/ backup_new/" in commands
+    assert "files:  3 changed, 1 added, 1 removed" in commands
