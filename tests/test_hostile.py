@@ -187,3 +187,18 @@ def test_unreadable_sibling_module_is_a_warning(tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 0 and "warning: could not read sibling module Broken.mod" in err
     assert "nested more than 100 levels deep" in err and "Traceback" not in err
+
+
+# ------------------------------------------------------------------ point 4
+
+@pytest.mark.parametrize("head", ["MODULE M ! comment\n", "MODULE M! c\n", "MODULE M\t!c\r\n",
+                                  "MODULE M (SYSMODULE) ! c\n", "MODULE ! c\n M\n"])
+def test_comment_after_module_name_accepted_by_every_command(head, tmp_path):
+    text = head + '  PERS wobjdata w:=[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n' \
+                  "  ! PERS wobjdata x := [\n  PERS num n:=1;\nENDMODULE\n"
+    f = tmp_path / "m.mod"
+    f.write_text(text)
+    assert main(["check", str(f)]) == 0
+    assert main(["frames", str(f)]) == 0
+    assert main(["patch", str(f), "--frame", "w", "--set", "1,2,4,0,0,0", "--in-place"]) == 0
+    assert load(f).frame("w").pose.t == (1, 2, 4)

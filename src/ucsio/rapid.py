@@ -71,7 +71,6 @@ _OUTLINE = re.compile(
     r"|(?P<eof>\Z))",
     re.IGNORECASE,
 )
-_STRINGS = re.compile(r'"[^"\r\n]*"')
 _TRIVIA = re.compile(r"(?:\s++|![^\r\n]*+)*+")
 _BAD_NUMBER = re.compile(
     r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
@@ -156,8 +155,10 @@ def outline(doc: Document, routines: bool = False) -> list[Region]:
 
 
 def _balanced(chunk: str) -> bool:
-    if '"' in chunk:
-        chunk = _STRINGS.sub("", chunk)
+    """As many [ as ] outside strings and comments (a run of declarations
+    holds the comment lines between them: "! PERS wobjdata x := [")."""
+    if '"' in chunk or "!" in chunk:
+        chunk = _STRINGS_AND_COMMENTS.sub("", chunk)
     return chunk.count("[") == chunk.count("]")
 
 
@@ -232,10 +233,12 @@ def _explain(text: str, pos: int) -> str:
 
 
 class Compact:
-    """Only the regions Lark must see, joined by single spaces, and the map
-    from a position in that text back to the file. Lark then reads a few
-    kilobytes instead of a module of robtargets; positions are mapped back
-    once, so every span in the tree points into the real document."""
+    """Only the regions Lark must see, joined by line breaks (a region may
+    end in a comment: "MODULE m ! note" must not comment out what follows),
+    and the map from a position in that text back to the file. Lark then
+    reads a few kilobytes instead of a module of robtargets; positions are
+    mapped back once, so every span in the tree points into the real
+    document."""
 
     def __init__(self, doc: Document, regions: list[Region]):
         text = doc.text
@@ -247,7 +250,7 @@ class Compact:
             self.starts.append(n)
             self.origins.append(r.span.start)
             parts.append(text[r.span.start:r.span.end])
-            parts.append(" ")
+            parts.append("\n")
             n += r.span.end - r.span.start + 1
         self.text = "".join(parts)
 

@@ -1,0 +1,211 @@
+"""Mutation fuzzing of the controller-file readers and the patcher (issue 12 point 8).
+
+The oracle, for any bytes:
+
+- every command ends in a result or in one UcsioError (one line, a sane
+  position), never another exception, never "internal error";
+- the fast path (frames, diff, patch) accepts exactly what ``check`` accepts
+  for structure: where ``check`` (the whole-file grammar) accepts a file the
+  fast path accepts it too, with the same frames; where the fast path
+  refuses a file, ``check`` refuses it too. (``check`` may refuse more: it
+  also reads every number outside frame data.)
+- an unedited document writes back byte for byte, and ``check``'s round trip
+  holds;
+- a patch of any frame either is refused (UcsioError) or changes only that
+  frame's numbers, reads back as the target, and leaves a file ``check``
+  accepts if it accepted the original.
+
+tests/test_fuzz.py runs a few hundred deterministic hypothesis examples of
+this; ``python benchmarks/fuzz.py --minutes N`` runs it for longer and saves
+every failing input.
+"""
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+from oracles import only_numbers_changed
+from ucsio import rotations as rot
+from ucsio.controller import parse
+from ucsio.document import Document
+from ucsio.errors import UcsioError
+from ucsio.frames import Pose
+
+ROOT = Path(__file__).resolve().parents[1]
+CORPUS = ROOT.parent / "shared" / "corpus"
+
+# Pieces a mutation inserts: structure tokens of both languages, trivia where
+# it is legal but unusual, and the hostile shapes of issue 12.
+TOKENS = [
+    b"[", b"]", b"{", b"}", b"(", b")", b",", b";", b":=", b"=", b"!", b"! note\n", b";note\n",
+    b'"', b"'", b"-", b"- ! note\n", b"+", b".", b"E", b"e+", b"#", b"&", b"%%%", b"$",
+    b"\n", b"\r", b"\r\n", b"\r\r\n", b"\t", b" ", b" " * 300, b"\n" * 200, b"\x00", b"\x1a",
+    b"\xef\xbb\xbf", b"\xff", b"\xc3\xa9", b"\xe2\x82\xac",
+    b"1E400", b"-1E400", b"1E38", b"3.5E38", b"9" * 400, b"0x" + b"F" * 300, b"0d" + b"9" * 5000,
+    b"1.2.3", b"12ab", b"0", b"-0", b".5", b"5.",
+    b"MODULE", b"ENDMODULE", b"PERS", b"CONST", b"VAR", b"LOCAL", b"TASK", b"wobjdata",
+    b"tooldata", b"pose", b"PROC p()\n", b"ENDPROC\n", b"RECORD r\n", b"ENDRECORD\n", b"<EXP>",
+    b"<DDN>", b"DEFDAT X\n", b"ENDDAT\n", b"DECL", b"FRAME", b"GLOBAL", b"BASE_DATA[1]",
+    b"TOOL_DATA[1]=", b"BASE_NAME[1,]=", b"MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 1E400}\n",
+    b"INT MAX_BASE=1E400\n", b"X", b"X.5", b"[" * 300, b"]" * 300, b"{X " * 300, b"}" * 300,
+    b"- " * 300, b"a" * 2000,
+]
+
+
+def seed_files(max_size: int | None = None) -> list[Path]:
+    """Real files first (the corpus, where it is beside the checkout), then
+    our fixtures; optionally only those up to ``max_size`` bytes."""
+    found = []
+    for folder in (CORPUS / "abb", CORPUS / "kuka", ROOT / "fixtures"):
+        if folder.is_dir():
+            for p in sorted(folder.rglob("*")):
+                if p.is_file() and p.suffix.lower() in (".mod", ".modx", ".sys", ".prg", ".dat"):
+                    if max_size is None or p.stat().st_size <= max_size:
+                        found.append(p)
+    return found
+
+
+# ------------------------------------------------------------------ mutations
+
+def mutate(raw: bytes, ops: list[tuple[int, int, int]]) -> bytes:
+    """Apply ``ops``, each (kind, a, b) with a, b arbitrary non-negative
+    integers read modulo what they index, so any integers make a mutation
+    (what hypothesis and a random generator both need)."""
+    for kind, a, b in ops:
+        n = len(raw)
+        pos = a % (n + 1)
+        kind %= 10
+        if kind == 0:                                   # flip one byte
+            if n:
+                raw = raw[:pos % n] + bytes([b % 256]) + raw[pos % n + 1:]
+        elif kind == 1:                                 # delete a range
+            raw = raw[:pos] + raw[pos + 1 + b % 64:]
+        elif kind == 2:                                 # insert a token
+            raw = raw[:pos] + TOKENS[b % len(TOKENS)] + raw[pos:]
+        elif kind == 3:                                 # truncate
+            raw = raw[:pos]
+        elif kind == 4:                                 # duplicate a range
+            raw = raw[:pos] + raw[pos:pos + 1 + b % 200] + raw[pos:]
+        elif kind == 5:                                 # every line ending CR alone
+            raw = raw.replace(b"\r\n", b"\n").replace(b"\n", b"\r")
+        elif kind == 6:                                 # a BOM in front (or a second one)
+            raw = b"\xef\xbb\xbf" + raw
+        elif kind == 7:                                 # a number made huge
+            digits = [i for i in range(n) if 48 <= raw[i] <= 57]
+            if digits:
+                i = digits[b % len(digits)]
+                raw = raw[:i] + TOKENS[TOKENS.index(b"1E400") + b % 4] + raw[i + 1:]
+        elif kind == 8:                                 # nest the value at a bracket
+            opens = [i for i in range(n) if raw[i] in b"[{"]
+            if opens:
+                i = opens[b % len(opens)]
+                depth = 1 + a % 400
+                close = b"]" if raw[i] == 91 else b"}"
+                inner = b"X " if raw[i] == 123 else b""
+                raw = raw[:i] + (raw[i:i + 1] + inner) * depth + b"1" + close * depth + raw[i:]
+        else:                                           # swap two lines
+            lines = raw.split(b"\n")
+            if len(lines) > 1:
+                i, j = a % len(lines), b % len(lines)
+                lines[i], lines[j] = lines[j], lines[i]
+                raw = b"\n".join(lines)
+    return raw
+
+
+# ------------------------------------------------------------------ the oracle
+
+class Finding(AssertionError):
+    """What the oracle found wrong, with the input that shows it."""
+
+
+def _parse(doc: Document, full: bool):
+    """(ControllerFile, None) or (None, UcsioError); any other exception is a finding."""
+    try:
+        return parse(doc, full=full), None
+    except UcsioError as exc:
+        _sane_error(doc, exc, "check" if full else "frames")
+        return None, exc
+    except Exception as exc:  # noqa: BLE001 - exactly what the oracle looks for
+        raise Finding(f"{'check' if full else 'frames'}: {type(exc).__name__}: {exc}"[:300]) \
+            from exc
+
+
+def _sane_error(doc: Document, exc: UcsioError, what: str) -> None:
+    msg = str(exc)
+    if "internal error" in msg:
+        raise Finding(f"{what}: {msg[:300]}")
+    if "\n" in msg or "\r" in msg or len(msg) > 400 or not exc.message:
+        raise Finding(f"{what}: not one short line: {msg[:300]!r}")
+    if exc.line is not None:
+        lines = len(doc.line_starts)
+        if not 1 <= exc.line <= lines or exc.col is None or exc.col < 1:
+            raise Finding(f"{what}: position {exc.line}:{exc.col} outside the file "
+                          f"({lines} lines): {msg[:200]}")
+
+
+def _frames_of(cf) -> list:
+    return [(f.as_dict(), {k: (n.span.start, n.span.end, n.signs) for k, n in f.numbers.items()})
+            for f in cf.frames]
+
+
+def target_for(pose: Pose, name: str) -> Pose:
+    """A pose near ``pose`` (deterministic in the frame's name), some values
+    crossing zero so that signs change."""
+    rng = random.Random(name)
+    d = rot.abc_to_quat(rng.uniform(-20, 20), rng.uniform(-20, 20), rng.uniform(-20, 20))
+    q = rot.quat_multiply(pose.q, d)
+    t = [c + rng.choice([-1, 1]) * rng.uniform(0, 2 * abs(c) + 1) for c in pose.t]
+    return Pose.from_quat(*t, q)
+
+
+def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
+    """Run the oracle on one input; raise Finding on anything wrong. Returns
+    a short word for statistics ('refused', 'accepted', 'check-only')."""
+    from ucsio.commands.check import round_trip
+    from ucsio.patch import patch_frame
+
+    doc = Document(raw, name)
+    if doc.to_bytes() != raw:
+        raise Finding("the unedited document does not write back byte for byte")
+    fast, fast_err = _parse(doc, full=False)
+    full, full_err = _parse(Document(raw, name), full=True)
+    if full is not None and fast is None:
+        raise Finding(f"check accepts, the fast path refuses: {fast_err}")
+    if fast is not None and full is not None:
+        if _frames_of(fast) != _frames_of(full):
+            raise Finding("the fast path and check give different frames")
+        if not round_trip(full):
+            raise Finding("check's round trip fails on a file it accepts")
+    if fast is None:
+        return "refused"
+    # patches: each refused cleanly, or confined to the frame's numbers
+    done = 0
+    for frame in fast.frames:
+        if done >= patches:
+            break
+        if frame.pose is None:
+            continue
+        done += 1
+        target = target_for(frame.pose, frame.name)
+        try:
+            res = patch_frame(fast, frame.name, target, measured=False, check_siblings=False)
+        except UcsioError as exc:
+            _sane_error(doc, exc, f"patch {frame.name}")
+            continue
+        except Exception as exc:  # noqa: BLE001
+            raise Finding(f"patch {frame.name}: {type(exc).__name__}: {exc}"[:300]) from exc
+        new = Document(res.new_bytes, name)
+        again, err = _parse(new, full=False)
+        if again is None:
+            raise Finding(f"patch {frame.name}: the patched file is refused: {err}")
+        try:
+            got = again.frame(frame.name)
+        except UcsioError as exc:
+            raise Finding(f"patch {frame.name}: not found after the patch: {exc}") from None
+        if not only_numbers_changed(doc.text, [frame], new.text, [got]):
+            raise Finding(f"patch {frame.name}: bytes outside the frame's numbers changed")
+        if full is not None:
+            checked, err = _parse(Document(res.new_bytes, name), full=True)
+            if checked is None:
+                raise Finding(f"patch {frame.name}: check refuses the patched file: {err}")
+    return "accepted" if full is not None else "check-only"
