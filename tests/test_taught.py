@@ -316,3 +316,33 @@ def test_plain_robtargets_read_without_lark_equal_the_grammars_reading():
             assert abb._target(lit.value)[1] == abb._target(decl.value)[1]
             assert mod.doc.line_of(lit.start) == mod.doc.line_of(rapid._start_of(decl.value, 0))
     assert fast > 1000 and slow > 0
+
+
+def test_points_inside_an_archive(tmp_path):
+    """A KUKA archive and an ABB backup zipped: the tree (or folder) around
+    the member is searched inside the archive, read in place."""
+    import zipfile
+
+    kuka_zip, abb_zip = tmp_path / "krc.zip", tmp_path / "abb.zip"
+    with zipfile.ZipFile(kuka_zip, "w") as z:
+        for p in (TAUGHT / "kuka").rglob("*"):
+            if p.is_file():
+                z.write(p, p.relative_to(TAUGHT / "kuka").as_posix())
+    with zipfile.ZipFile(abb_zip, "w") as z:
+        for p in (TAUGHT / "abb").iterdir():
+            z.write(p, "RAPID/TASK1/PROGMOD/" + p.name)
+        z.writestr("RAPID/TASK1/SYSMOD/Other.sys", "MODULE Other\nENDMODULE\n")
+    sol = solution(tmp_path, **KUKA_MEAS)
+    on_disk, _ = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured", sol)
+    zipped, _ = points_json(f"{kuka_zip}!KRC/R1/System/$config.dat", "--frame", "weld_fixture",
+                            "--measured", sol)
+    assert [(p["name"], p["moved"]) for p in zipped["points"]] == \
+        [(p["name"], p["moved"]) for p in on_disk["points"]]
+    assert f"{kuka_zip}!KRC/R1/Program/Weld/seam.dat" in {p["file"] for p in zipped["points"]}
+    sol = solution(tmp_path, **dict(ABB_MEAS, q=_norm(ABB_MEAS["q"])))
+    on_disk, _ = points_json(TAUGHT / "abb" / "Cell.mod", "--frame", "wobjTable", "--measured", sol)
+    zipped, _ = points_json(f"{abb_zip}!RAPID/TASK1/PROGMOD/Cell.mod", "--frame", "wobjTable",
+                            "--measured", sol)
+    assert sorted((p["name"], p["moved"]) for p in zipped["points"]) == \
+        sorted((p["name"], p["moved"]) for p in on_disk["points"])
+    assert f"{abb_zip}!RAPID/TASK1/PROGMOD/Targets.mod" in {p["file"] for p in zipped["points"]}

@@ -17,6 +17,7 @@ moved = |T_measured p - T_simulated p| in world, mm.
 from __future__ import annotations
 
 import math
+import os
 from typing import Any
 
 from ..controller import ControllerFile
@@ -48,6 +49,52 @@ class Found(Value):
                  warnings: list[str] | None = None):
         self.points = points if points is not None else []
         self.warnings = warnings if warnings is not None else []
+
+
+def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
+    """The controller files the readers search, as ``ucsio.backup.Source``s:
+    those with ``suffixes`` below ``root_of(folder parts)``'s folder, on disk
+    or, for ``ARCHIVE.zip!member``, in the same archive (read in place).
+    ``root_of`` maps the file's folder, as a list of path parts, to how many
+    of them make the searched root. Shown paths stay as the user gave them
+    (relative to the current folder where below it)."""
+    from ..backup import Source, archive_sources, split_member
+
+    member = split_member(file)
+    if member is not None:
+        archive, inner = member
+        parts = inner.replace("\\", "/").split("/")[:-1]
+        prefix = "/".join(parts[:root_of(parts)])
+        return [src for src in archive_sources(archive)
+                if src.rel.lower().endswith(suffixes)
+                and (not prefix or src.rel.casefold().startswith(prefix.casefold() + "/"))]
+    folder = os.path.dirname(os.path.abspath(file))
+    parts = folder.split(os.sep)
+    root = os.sep.join(parts[:root_of(parts)]) or os.sep
+    out = []
+    for dirpath, dirnames, filenames in os.walk(root):
+        dirnames[:] = [] if root_of is same_folder else sorted(dirnames)   # ABB: the folder only
+        for f in sorted(filenames):
+            if f.lower().endswith(suffixes):
+                full = os.path.join(dirpath, f)
+                rel = os.path.relpath(full)
+                shown = rel if not rel.startswith("..") else full
+                out.append(Source(shown, os.path.relpath(full, root), path=full))
+    return out
+
+
+def same_folder(parts: list[str]) -> int:
+    """``files_around``'s root for ABB: the file's own folder, not below it."""
+    return len(parts)
+
+
+def is_same_file(source, cf: ControllerFile) -> bool:
+    if source.archive is not None or not cf.path:
+        return source.name == cf.path
+    try:
+        return os.path.samefile(source.path, cf.path)
+    except OSError:
+        return False
 
 
 def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:

@@ -31,7 +31,7 @@ from ..document import Document, Span
 from ..errors import UcsioError
 from ..frames import Frame, Number
 from ..rotations import quat_to_matrix, matvec
-from . import Found, TaughtPoint
+from . import Found, TaughtPoint, files_around, is_same_file, same_folder
 
 # One statement: everything up to the next ';' outside strings and comments.
 _STATEMENT = re.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
@@ -70,14 +70,9 @@ _LITERAL_TARGET = re.compile(
 _CARTESIAN_MOVE = re.compile(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
 
 
-def _modules(frame: Frame) -> list[Path]:
-    here = Path(frame.file)
-    try:
-        found = sorted(p for p in here.parent.iterdir()
-                       if p.suffix.lower() in ABB_SUFFIXES and p.is_file())
-    except OSError:
-        found = []
-    return found or [here]
+def _modules(frame: Frame) -> list:
+    """The modules of the file's folder (on disk, or in the same archive)."""
+    return files_around(frame.file, same_folder, tuple(ABB_SUFFIXES))
 
 
 def _wobj_name(frame: Frame) -> str:
@@ -265,18 +260,16 @@ def _target(value) -> tuple[tuple[float, float, float], tuple] | None:
     return tuple(c.value for c in t), quat
 
 
-def _module(path: Path, cf: ControllerFile, frame: Frame, cache: dict | None) -> _Module:
+def _module(src, cf: ControllerFile, cache: dict | None) -> _Module:
     """A module of the folder, read once per run where ``cache`` is given."""
-    key = ("abb", os.path.abspath(path))
+    key = ("abb", src.name)
     if cache is not None and key in cache:
         got = cache[key]
         if isinstance(got, UcsioError):
             raise got
         return got
     try:
-        doc = cf.document if Path(path).resolve() == Path(frame.file).resolve() \
-            else Document.read(path)
-        got = _read_module(doc)
+        got = _read_module(cf.document if is_same_file(src, cf) else src.document())
     except UcsioError as exc:
         if cache is not None:
             cache[key] = exc
@@ -294,11 +287,12 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
         return found
     wobj = _wobj_name(frame).casefold()
     modules = []
-    for path in _modules(frame):
+    for src in _modules(frame) or [None]:
         try:
-            modules.append(_module(path, cf, frame, cache))
+            modules.append(_read_module(cf.document) if src is None else _module(src, cf, cache))
         except UcsioError as exc:
-            found.warnings.append(f"could not read {path} ({exc}); its points are not counted")
+            found.warnings.append(f"could not read {src.name if src else cf.path} ({exc}); "
+                                  "its points are not counted")
     wanted = {str(tok).casefold() for mod in modules for tree, _ in mod.statements
               if tree is not None for tok in _names_moved_to(tree, wobj)}
     for mod in list(modules):

@@ -15,45 +15,29 @@ kept, the rest blanked, one Lark parse of the masked text.
 """
 from __future__ import annotations
 
-import os
 import re
-from pathlib import Path
 
 from .. import krl
 from ..controller import ControllerFile
 from ..document import Document
 from ..errors import UcsioError
 from ..frames import Frame
-from . import Found, TaughtPoint
+from . import Found, TaughtPoint, files_around, is_same_file
 
 _BASE_ENTRY = re.compile(r"BASE_DATA\[(\d+)\]\Z", re.I)
 MAX_DEPTH = 3        # how far up from $config.dat a KRC folder is looked for
 
 
-def tree_root(config: str) -> Path:
-    """The controller's tree around ``config``."""
-    folder = Path(os.path.abspath(config)).parent
-    for up in [folder, *list(folder.parents)[:MAX_DEPTH]]:
-        if up.name.upper() == "KRC":
-            return up
-    if folder.name.upper() == "SYSTEM" and folder.parent.name.upper().startswith("R"):
-        return folder.parent
-    return folder
-
-
-def dat_files(root: Path) -> list[Path]:
-    out = []
-    for dirpath, dirnames, filenames in os.walk(root):
-        dirnames.sort()
-        out.extend(_shown(Path(dirpath) / f) for f in sorted(filenames)
-                   if f.lower().endswith(".dat"))
-    return out
-
-
-def _shown(path: Path) -> Path:
-    """A path as a person reads it: relative to the current folder when below it."""
-    rel = os.path.relpath(path)
-    return Path(rel) if not rel.startswith("..") else path
+def tree_root(parts: list[str]) -> int:
+    """How many of the parts of $config.dat's folder make the controller's
+    tree: up to a KRC folder (at most MAX_DEPTH up), else R1 for
+    R1/System, else the folder itself."""
+    for k in range(len(parts), max(len(parts) - MAX_DEPTH - 1, 0), -1):
+        if parts[k - 1].upper() == "KRC":
+            return k
+    if len(parts) >= 2 and parts[-1].upper() == "SYSTEM" and parts[-2].upper().startswith("R"):
+        return len(parts) - 1
+    return len(parts)
 
 
 def points_in(doc: Document, base_no: int, found: Found, read=None) -> None:
@@ -83,19 +67,20 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
                               "in bases (FDAT BASE_NO)")
         return found
     base_no = int(m.group(1))
+
     def read(doc: Document):
         if cache is None:
             return krl.positions(doc, full=False)
-        key = ("kuka", os.path.abspath(doc.path))
+        key = ("kuka", doc.path)
         if key not in cache:
             cache[key] = krl.positions(doc, full=False)
         return cache[key]
 
-    for path in dat_files(tree_root(frame.file)):
+    for src in files_around(frame.file, tree_root, (".dat",)):
         try:
-            same = path.resolve() == Path(frame.file).resolve()
-            doc = cf.document if same else Document.read(path)
+            doc = cf.document if is_same_file(src, cf) else src.document()
             points_in(doc, base_no, found, read)
         except UcsioError as exc:
-            found.warnings.append(f"could not read {path} ({exc}); its points are not counted")
+            found.warnings.append(f"could not read {src.name} ({exc}); its points are not "
+                                  "counted")
     return found
