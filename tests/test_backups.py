@@ -326,3 +326,14 @@ def test_backup_commands_stay_light(tmp_path):
         assert out == {"code": 0, "heavy": []}, (args, out)
     source = (ROOT / "src" / "ucsio" / "backup.py").read_text()
     assert "\nimport zipfile" not in source and "    import zipfile" in source
+
+
+def test_empty_folder_or_archive_is_named_not_silently_empty(tmp_path):
+    (tmp_path / "empty").mkdir()
+    with zipfile.ZipFile(tmp_path / "docs.zip", "w") as zf:
+        zf.writestr("readme.txt", "no controller files here")
+    for target in (tmp_path / "empty", tmp_path / "docs.zip"):
+        res = run("frames", target)
+        assert res.returncode == 2 and "no controller files" in res.stderr
+    res = run("diff", tmp_path / "empty", tmp_path / "docs.zip")
+    assert res.returncode == 2 and res.stderr.count("\n") == 1

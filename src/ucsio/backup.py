@@ -91,7 +91,11 @@ def expand(paths: list[str]) -> list[Source | Failure]:
         p = os.fspath(p)
         try:
             if os.path.isdir(p):
-                out.extend(folder_sources(p))
+                found = folder_sources(p)
+                if not found:   # a wrong folder, most likely: say so rather than list nothing
+                    raise UcsioError("no controller files (" + " ".join(BACKUP_SUFFIXES)
+                                     + ") in this folder", file=p)
+                out.extend(found)
             elif is_archive(p):
                 out.extend(archive_sources(p))
             elif is_member(p):
@@ -135,8 +139,13 @@ def _open_zip(archive: str):
 def archive_sources(archive: str) -> list[Source]:
     zf = _open_zip(archive)
     names = [i.filename for i in zf.infolist() if not i.is_dir()]
-    found = [Source(f"{archive}{MEMBER_MARK}{n}", n.lstrip("/"), archive=archive, member=n)
+    # rel: '/' separators even where a Windows tool wrote '\\' into the archive
+    found = [Source(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
+                    archive=archive, member=n)
              for n in names if n.lower().endswith(BACKUP_SUFFIXES)]
+    if not found:
+        raise UcsioError("no controller files (" + " ".join(BACKUP_SUFFIXES)
+                         + ") in this archive", file=archive)
     found.sort(key=lambda s: s.rel.casefold())
     return found
 

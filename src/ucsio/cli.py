@@ -15,10 +15,10 @@ from . import __version__
 from .errors import UcsioError, UsageError, did_you_mean
 
 COMMANDS = {
-    "frames": "list every frame in controller files",
-    "check": "parse, prove the byte-exact round trip, and lint",
+    "frames": "list every frame in controller files, backup folders or .zip archives",
+    "check": "parse, prove the byte-exact round trip, and lint (files, folders, archives)",
     "solve": "fit the measured UCS to laser/robot point pairs (Horn's method)",
-    "diff": "simulated vs measured frame, or every frame of two files",
+    "diff": "simulated vs measured frame, or every frame of two files or two backups",
     "patch": "write a frame back into a controller file",
     "batch": "solve and diff many datasets from a TOML manifest",
     "demo": "the whole job on shipped example cells",
