@@ -359,3 +359,22 @@ def test_every_help_names_its_inputs(command, inputs):
     text = " ".join(res.stdout.split())
     for word in inputs:
         assert word in text, (command, word)
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminals are POSIX")
+def test_batch_status_coloured_without_shifting_columns(tmp_path):
+    import re
+    shutil.copy(KUKA_CSV, tmp_path / "points.csv")
+    shutil.copy(FIXTURES / "kuka" / "cell_config.dat", tmp_path / "config.dat")
+    (tmp_path / "m.toml").write_text(
+        f'[defaults]\ntcp = [{TCP}]\n\n'
+        '[[entry]]\nname = "far"\nmeasurement = "points.csv"\ncontroller = "config.dat"\n'
+        'frame = "BASE_DATA[1]"\n\n'
+        '[[entry]]\nname = "tight tolerance"\nmeasurement = "points.csv"\n'
+        'controller = "config.dat"\nframe = "BASE_DATA[1]"\ntolerance = 1e-3\n')
+    piped = run("batch", tmp_path / "m.toml", "--no-progress")
+    rc, out = run_on_terminal("batch", tmp_path / "m.toml", "--no-progress")
+    assert rc == piped.returncode == 1
+    assert "\033[1;31mover tolerance\033[0m" in out and "\033[" not in piped.stdout
+    plain = re.sub(r"\033\[[0-9;]*m", "", out).replace("\r\n", "\n")
+    assert plain == piped.stdout

@@ -144,6 +144,21 @@ def _used(s) -> str:
     return f"{n_used}/{n_points}"
 
 
+def _paint_status(text: str, names: list, statuses: list) -> str:
+    """The status column coloured on a terminal (pass green, the rest red);
+    painted after the layout, so the codes do not shift the columns."""
+    from ..output import colour_on, paint
+    if not colour_on():
+        return text
+    lines = text.split("\n")
+    start = max([len("entry")] + [len(str(n)) for n in names]) + 2
+    for i, status in enumerate(statuses, start=2):
+        ln = lines[i]
+        end = start + len(status)
+        lines[i] = ln[:start] + paint(ln[start:end], "pass" if status == "pass" else "fail") + ln[end:]
+    return "\n".join(lines)
+
+
 def render(result, patching: bool | None = None) -> str:
     """The text table, the errors and patch errors, groups and summary lines.
     ``patching``: show the patch column and counts (default: when any entry
@@ -174,8 +189,8 @@ def render(result, patching: bool | None = None) -> str:
         headers.append("points moved max (n)")
     if patching:
         headers.append("patch")
-    out = [table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9, 10} if points else
-                 {2, 3, 4, 5, 6, 7, 8, 9})]
+    out = [_paint_status(table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9, 10} if points else
+                               {2, 3, 4, 5, 6, 7, 8, 9}), [r[0] for r in rows], [r[1] for r in rows])]
     rejected = [r for r in result.entries if r.status == "rejected"]
     if rejected:
         out.append("")
