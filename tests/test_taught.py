@@ -346,3 +346,13 @@ def test_points_inside_an_archive(tmp_path):
     assert sorted((p["name"], p["moved"]) for p in zipped["points"]) == \
         sorted((p["name"], p["moved"]) for p in on_disk["points"])
     assert f"{abb_zip}!RAPID/TASK1/PROGMOD/Targets.mod" in {p["file"] for p in zipped["points"]}
+
+
+def test_api_diff_frame_with_points(tmp_path):
+    from ucsio import api
+
+    sol = json.loads(open(solution(tmp_path, **KUKA_MEAS)).read())
+    d = api.diff_frame(api.load(KUKA_CONFIG), "weld_fixture", sol, points=True)
+    cli, _ = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
+                         solution(tmp_path, **KUKA_MEAS))
+    assert d["points_moved"] == cli["points_moved"] and d["points"] == cli["points"]

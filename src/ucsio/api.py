@@ -85,11 +85,22 @@ def as_pose(solution: Any) -> Pose:
 
 
 def diff_frame(file: PathLike | ControllerFile, name: str, solution: Any,
-               tolerance: float = DEFAULT_TOLERANCE, oframe: bool = False) -> dict[str, Any]:
+               tolerance: float = DEFAULT_TOLERANCE, oframe: bool = False,
+               points: bool = False) -> dict[str, Any]:
     """SPEC's one-frame diff (``ucsio diff FILE --frame NAME --measured``):
-    name, simulated, measured, dx dy dz da db dc angle dist dt_mean, group, pass."""
+    name, simulated, measured, dx dy dz da db dc angle dist dt_mean, group, pass.
+    ``points`` (``--points``) adds ``points``, ``points_moved`` and
+    ``points_warnings``: how far each position taught in the frame moves."""
+    from .patch import resolve_name
     from .review import diff_frame as _diff_frame
-    return _diff_frame(_cell(file), name, as_pose(solution), tolerance, oframe=oframe)
+
+    cell = _cell(file)
+    pose = as_pose(solution)
+    d = _diff_frame(cell, name, pose, tolerance, oframe=oframe)
+    if points:
+        from .taught import points_moved
+        d.update(points_moved(cell, cell.frame(resolve_name(name, oframe)), pose))
+    return d
 
 
 def diff_files(old: PathLike | ControllerFile | None,

@@ -436,7 +436,10 @@ def _href(target: str, base: str | None) -> str:
 def _meta(data: dict, entries: list[dict], meta: dict) -> str:
     made = meta.get("generated") or "\u2013"
     parts = [("made", _e(made)), ("by ucsio", _e(meta.get("version") or "\u2013")),
-             ("manifest", f"<code>{_e(data.get('manifest'))}</code>"),
+             ("manifest", (f'<a id="manifest-link" href="{_e(_href(data["manifest"], meta["base"]))}">'
+                           f"<code>{_e(data['manifest'])}</code></a>")
+              if isinstance(data.get("manifest"), str) and meta.get("base")
+              else f"<code>{_e(data.get('manifest'))}</code>"),
              ("tolerance", f"{_e(_same(entries, 'tolerance'))} mm"),
              ("outlier threshold", f"{_e(_same(entries, 'threshold'))} mm"),
              ("min points", _e(_same(entries, "min_points")))]
