@@ -23,18 +23,12 @@ def add_arguments(p) -> None:
 
 def round_trip(cf) -> bool:
     """What a patch relies on: the bytes ucsio writes for the unedited
-    document are the file's bytes; parsing them again gives the same frames;
-    and every frame number's span holds exactly that number, so a patch
-    replaces the number and nothing beside it."""
-    from ..controller import parse
-    from ..document import Document
-
+    document are the file's bytes, and every frame number's span holds
+    exactly that number, so a patch replaces the number and nothing beside
+    it. (Parsing the written bytes again would prove nothing more: they are
+    the bytes just parsed, and the parser is a function of its input.)"""
     doc = cf.document
-    out = doc.to_bytes()
-    if out != doc.raw:
-        return False
-    again = parse(Document(out, doc.path), full=True)
-    if [f.as_dict() for f in again.frames] != [f.as_dict() for f in cf.frames]:
+    if doc.to_bytes() != doc.raw:
         return False
     for f in cf.frames:
         for n in f.numbers.values():
