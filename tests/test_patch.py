@@ -491,3 +491,24 @@ def test_kuka_angles_written_in_spec_ranges(given, written):
     back = parse(Document(res.new_bytes, REFS)).frame("spec_base")
     assert [back.numbers[k].value for k in "abc"] == pytest.approx(written, abs=1e-9)
     assert rot.quat_angle(back.pose.q, rot.abc_to_quat(*given)) < 1e-4
+
+
+def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
+    """The shared-PERS check parses a sibling module only when its bytes
+    hold the data's name (any case); the refusal still finds the real one."""
+    import ucsio.rapid
+
+    decl = 'PERS wobjdata wobjA:=[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
+    (tmp_path / "cell.mod").write_text("MODULE cell\n  " + decl + "ENDMODULE\n")
+    (tmp_path / "same.mod").write_text("MODULE same\n  " + decl.replace("wobjA", "WOBJA")
+                                       + "ENDMODULE\n")
+    (tmp_path / "other.mod").write_text("MODULE other\n  " + decl.replace("wobjA", "wobjAB")
+                                        + "ENDMODULE\n")
+    parsed = []
+    real = ucsio.rapid.parse
+    monkeypatch.setattr(ucsio.rapid, "parse",
+                        lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
+    cf = load(tmp_path / "cell.mod")
+    with pytest.raises(UcsioError, match="also declared in same.mod"):
+        patch_frame(cf, "wobjA.oframe", Pose.from_abc(1, 2, 4, 0, 0, 0), measured=False)
+    assert "other.mod" not in parsed and "same.mod" in parsed

@@ -43,7 +43,7 @@ from typing import Any
 
 from . import rotations as rot
 from .controller import ABB_SUFFIXES, ControllerFile, parse
-from .document import Document, Edit, text_lines
+from .document import Document, Edit, looks_binary, text_lines
 from .errors import UcsioError
 from .files import atomic_write, write_target
 from .frames import Frame, Number, Pose
@@ -382,6 +382,8 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
                 continue
         except OSError:
             continue
+        if not _may_declare(p, frame.name):
+            continue
         try:
             other = load(p)
         except Exception as exc:  # noqa: BLE001 - a sibling is only consulted: never fatal
@@ -395,6 +397,28 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
                 same = poses_equal(frame.pose, f.pose)
                 found.append({"file": str(p), "line": f.line, "same_value": same})
     return found
+
+
+def _may_declare(path: Path, name: str) -> bool:
+    """Whether a sibling module can declare ``name`` at all: its bytes hold
+    the data's name as a word, in any case (RAPID names are ASCII, so this holds in
+    any ASCII-compatible encoding). Only those are parsed: a backup folder's
+    other thirty modules cost a file read each, not a parse. A file that is
+    not plain text (encrypted, UTF-16) is parsed anyway, so it is read or
+    warned about as before."""
+    import re
+
+    try:
+        raw = path.read_bytes()
+    except OSError:
+        return True                         # let the loader say what is wrong
+    if looks_binary(raw):
+        return True
+    data = re.match(r"[A-Za-z_]\w*", name)   # the data's own name: wobj1 of wobj1.oframe, tools{2}
+    if data is None:
+        return True
+    word = rb"(?<![A-Za-z0-9_])" + data.group().encode("ascii") + rb"(?![A-Za-z0-9_])"
+    return re.search(word, raw, re.IGNORECASE) is not None
 
 
 def poses_equal(a: Pose | None, b: Pose | None) -> bool:

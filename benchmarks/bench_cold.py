@@ -1,0 +1,113 @@
+"""Cold ``frames``, ``diff`` and ``patch`` (preview) against the floor: a
+fresh ``python`` that reads the same file and runs one regex pass over it.
+
+    python benchmarks/bench_cold.py [--rounds 7]
+
+Files: a typical RAPID module of the shared corpus (26 KB), a KUKA
+``$config.dat`` of the corpus (120 KB) and a generated RAPID module with
+20,000 robtargets (2.6 MB, make_big_module.py). Commands, each a fresh
+process with its output sent to a null device:
+
+    python -m ucsio frames FILE
+    python -m ucsio diff FILE --frame NAME --measured SOLUTION.json
+    python -m ucsio patch FILE --frame NAME --measured SOLUTION.json   (prints the diff)
+
+SOLUTION.json is solved once from fixtures/measurements/abb_wobj.csv. Each
+round runs a command and the floor one after the other (coldstart.py);
+medians are compared. Targets: <= 2.5x the floor on the two small files,
+<= 2x on the big module.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE))
+from coldstart import ENV  # noqa: E402
+from make_big_module import big_module  # noqa: E402
+
+CORPUS = ROOT.parent / "shared" / "corpus"
+if not CORPUS.exists():
+    CORPUS = Path("/work/shared/corpus")
+RAPID = CORPUS / "abb" / "EdgarIvanMM__PaletizadoCajasConFrascos__RAPID__TASK1__PROGMOD__MainModule.mod"
+KRL = CORPUS / "kuka" / "Aleynikovich__Zinkerreka__KRC__R1__System__$config.dat"
+FLOOR = ("import re,sys\n"
+         "d=open(sys.argv[1],'rb').read()\n"
+         "n=sum(1 for m in re.finditer(rb'(?im)^[ \\t]*(?:(?:GLOBAL|DECL|LOCAL|TASK|PERS|CONST|VAR)"
+         "[ \\t]+)+(\\w+)[ \\t]+([\\w\\[\\],]+)', d))\n")
+
+
+def ucsio(*args: str) -> list[str]:
+    return [sys.executable, "-m", "ucsio", *args]
+
+
+def first_frame(path: Path) -> str:
+    out = subprocess.run(ucsio("frames", str(path), "--json"), capture_output=True, text=True,
+                         env=ENV, check=True).stdout
+    frames = json.loads(out)["frames"]
+    return next(f["name"] for f in frames
+                if f["type"] in ("wobjdata", "BASE_DATA") and f["x"] is not None)
+
+
+def run_cold(cmd: list[str]) -> float:
+    t = time.perf_counter()
+    code = subprocess.run(cmd, stdout=subprocess.DEVNULL, env=ENV).returncode
+    if code not in (0, 1):                  # 1: a frame over tolerance, a gate; fine here
+        raise SystemExit(f"{' '.join(cmd)}: exit {code}")
+    return time.perf_counter() - t
+
+
+def alternate(a: list[str], b: list[str], rounds: int) -> tuple[float, float]:
+    """Medians over alternating runs, after one warm-up of each (coldstart.py)."""
+    run_cold(a), run_cold(b)
+    ta, tb = [], []
+    for _ in range(rounds):
+        ta.append(run_cold(a))
+        tb.append(run_cold(b))
+    return statistics.median(ta), statistics.median(tb)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rounds", type=int, default=7)
+    args = ap.parse_args(argv)
+    ENV["PYTHONPATH"] = str(ROOT / "src") + os.pathsep + ENV.get("PYTHONPATH", "")
+    ok = True
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        big = tmp / "big.mod"
+        big.write_text(big_module(20000), newline="")
+        sol = tmp / "SOLUTION.json"
+        subprocess.run(ucsio("solve", str(ROOT / "fixtures" / "measurements" / "abb_wobj.csv"),
+                             "--tcp", "1.5,-2.0,182.3", "-o", str(sol)),
+                       env=ENV, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        print(f"{'file':<34} {'command':<8} {'ucsio':>9} {'floor':>9} {'ratio':>6}  target")
+        for label, path, target in (("RAPID module, 26 KB", RAPID, 2.5),
+                                    ("KUKA $config.dat, 120 KB", KRL, 2.5),
+                                    ("RAPID, 20,000 robtargets, 2.6 MB", big, 2.0)):
+            name = first_frame(path)
+            commands = {"frames": ucsio("frames", str(path)),
+                        "diff": ucsio("diff", str(path), "--frame", name, "--measured", str(sol)),
+                        "patch": ucsio("patch", str(path), "--frame", name, "--measured", str(sol))}
+            for cmd, argv_ in commands.items():
+                t_u, t_f = alternate(argv_, [sys.executable, "-c", FLOOR, str(path)], args.rounds)
+                ratio = t_u / t_f
+                ok &= ratio <= target
+                print(f"{label:<34} {cmd:<8} {t_u * 1000:7.1f}ms {t_f * 1000:7.1f}ms {ratio:6.2f}"
+                      f"  <= {target:g} {'met' if ratio <= target else 'NOT met'}")
+    print()
+    print("rerun: python benchmarks/bench_cold.py [--rounds N]")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
