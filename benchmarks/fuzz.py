@@ -53,7 +53,7 @@ def main(argv=None) -> int:
     n = 0
     while time.monotonic() < deadline:
         path = rng.choice(seeds)
-        ops = [(rng.randrange(10), rng.randrange(1 << 20), rng.randrange(1 << 20))
+        ops = [(rng.randrange(fuzzing.KINDS), rng.randrange(1 << 20), rng.randrange(1 << 20))
                for _ in range(rng.randint(1, args.max_ops))]
         raw = fuzzing.mutate(raws[path], ops)
         n += 1

@@ -74,7 +74,7 @@ def mutate(raw: bytes, ops: list[tuple[int, int, int]]) -> bytes:
     for kind, a, b in ops:
         n = len(raw)
         pos = a % (n + 1)
-        kind %= 10
+        kind %= KINDS
         if kind == 0:                                   # flip one byte
             if n:
                 raw = raw[:pos % n] + bytes([b % 256]) + raw[pos % n + 1:]
@@ -103,13 +103,24 @@ def mutate(raw: bytes, ops: list[tuple[int, int, int]]) -> bytes:
                 close = b"]" if raw[i] == 91 else b"}"
                 inner = b"X " if raw[i] == 123 else b""
                 raw = raw[:i] + (raw[i:i + 1] + inner) * depth + b"1" + close * depth + raw[i:]
-        else:                                           # swap two lines
+        elif kind == 9:                                 # swap two lines
             lines = raw.split(b"\n")
             if len(lines) > 1:
                 i, j = a % len(lines), b % len(lines)
                 lines[i], lines[j] = lines[j], lines[i]
                 raw = b"\n".join(lines)
+        else:                                           # trivia where a word ends or starts
+            edges = [i for i in range(1, n) if _WORD[raw[i - 1]] != _WORD[raw[i]]]
+            if edges:
+                i = edges[a % len(edges)]
+                raw = raw[:i] + TRIVIA[b % len(TRIVIA)] + raw[i:]
     return raw
+
+
+KINDS = 11
+# trivia both languages allow between tokens (RAPID: all; KRL: blanks, a comment at a line's end)
+TRIVIA = [b" ", b"\t", b"\n", b"\r\n", b" ! note\n", b"!\n", b"; note\n", b"\n\n", b"  \t "]
+_WORD = [chr(c).isalnum() or chr(c) in "_.$" for c in range(256)]
 
 
 # ------------------------------------------------------------------ the oracle

@@ -19,7 +19,7 @@ KRL_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".dat"]
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
-ops = st.lists(st.tuples(st.integers(0, 9), st.integers(0, 1 << 20), st.integers(0, 1 << 20)),
+ops = st.lists(st.tuples(st.integers(0, fuzzing.KINDS - 1), st.integers(0, 1 << 20), st.integers(0, 1 << 20)),
                min_size=1, max_size=3)
 
 
@@ -68,7 +68,7 @@ def rapid_pose(draw):
 @st.composite
 def rapid_decl(draw, i):
     kind = draw(st.sampled_from(["wobjdata", "tooldata", "pose", "num", "robtarget", "comment",
-                                 "routine", "record"]))
+                                 "routine", "record", "array", "alias", "placeholder", "func"]))
     head = draw(st.sampled_from(["PERS", "TASK" + draw(SEP) + "PERS", "LOCAL" + draw(SEP) + "PERS",
                                  "CONST", "VAR"]))
     if kind == "comment":
@@ -77,6 +77,17 @@ def rapid_decl(draw, i):
         return "PROC r%d()%s  x := 1;%sENDPROC" % (i, draw(GAP) or "\n", draw(GAP) or "\n")
     if kind == "record":
         return "RECORD rec%d%snum a;%sENDRECORD" % (i, draw(SEP), draw(GAP) or "\n")
+    if kind == "alias":
+        return "ALIAS num len%d;" % i
+    if kind == "placeholder":
+        return "<DDN>"
+    if kind == "func":      # END words inside a string and a comment do not end it
+        return ('LOCAL FUNC num f%d()\n  TPWrite "ENDFUNC ENDMODULE";%s  RETURN 1; ! ENDFUNC\n'
+                "ENDFUNC" % (i, draw(GAP) or "\n"))
+    if kind == "array":
+        wobj = draw(aggregate(["FALSE", "TRUE", '""', draw(rapid_pose()), draw(rapid_pose())]))
+        return (f"{head}{draw(SEP)}wobjdata{draw(SEP)}wa{i}{{2}}{draw(GAP)}:={draw(GAP)}"
+                f"[{wobj},{draw(GAP)}{wobj}]{draw(GAP)};")
     if kind == "wobjdata":
         value = draw(aggregate([draw(st.sampled_from(["FALSE", "TRUE"])), "TRUE", '""',
                                 draw(rapid_pose()), draw(rapid_pose())]))
@@ -147,6 +158,15 @@ def krl_list(draw):
                      + draw(krl_frame()) + draw(st.sampled_from(["", " ; note", ";"])))
         lines.append(draw(st.sampled_from(["", f'BASE_NAME[{i},]="fixture {i}"',
                                            f"BASE_TYPE[{i}]=#BASE", ";ENDFOLD"])))
+    lines.append(draw(st.sampled_from([
+        "", "DECL E6POS XP1={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0,S 6,T 27,E1 0.0}",
+        "DECL GLOBAL POS MasterPos[2,3]", "GLOBAL STRUC mystr INT a, REAL b",
+        ";FOLD BASISTECH EXT;%{PE}%MKUKATPBASIS,%CEXT,%VEXT,%P", "SIGNAL sig $OUT[5]",
+        'DECL CHAR name[24]', "ENUM myenum one,two", "DECL LOAD LOAD_DATA[16]",
+        "LOAD_DATA[1]={M -1.00000,CM {X 0.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0},J {X 0.0,Y 0.0,Z 0.0}}",
+        "TOOL_DATA[1]={X 0.0,Y 0.0,Z 185.5,A 0.0,B 0.0,C 0.0}", "BASE_TYPE[1]=#TCP",
+        'MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 0,PARENT[] "WORLD"}']))
+        + draw(st.sampled_from(["", " ; note"])))
     lines.append(draw(KRL_WS) + "DECL" + draw(st.sampled_from([" ", " GLOBAL "])) + "FRAME"
                  + draw(st.sampled_from([" ", "  "])) + "fUser=" + draw(krl_frame()))
     lines.append("ENDDAT")
