@@ -337,3 +337,19 @@ def test_empty_folder_or_archive_is_named_not_silently_empty(tmp_path):
         assert res.returncode == 2 and "no controller files" in res.stderr
     res = run("diff", tmp_path / "empty", tmp_path / "docs.zip")
     assert res.returncode == 2 and res.stderr.count("\n") == 1
+
+
+def test_an_archive_of_the_backup_folder_pairs_with_its_contents(two_backups, tmp_path):
+    """A zip of the backup folder itself (everything under R1_BACKUP/) against
+    the folder's contents: the wrapping folder is set aside when pairing."""
+    old, new = two_backups
+    archive = tmp_path / "R1_BACKUP.zip"
+    with zipfile.ZipFile(archive, "w") as zf:
+        for p in sorted(old.rglob("*")):
+            if p.is_file():
+                zf.write(p, "R1_BACKUP/" + p.relative_to(old).as_posix())
+    res = run("diff", archive, old, "--exit-code")
+    assert res.returncode == 0 and "no difference" in res.stdout
+    d = json.loads(run("diff", archive, new, "--json").stdout)
+    assert len(d["changed"]) == 2 and len(d["files_added"]) == 1 and len(d["files_removed"]) == 1
+    assert d["files_added"][0]["path"] == "RAPID/TASK1/PROGMOD/Fixture.mod"

@@ -15,13 +15,43 @@ from .backup import Failure, Source, expand
 from .errors import UcsioError
 
 
-def _sources(path: str) -> dict[str, Source]:
-    out: dict[str, Source] = {}
+def _sources(path: str) -> list[Source]:
+    out = []
     for s in expand([path]):
         if isinstance(s, Failure):      # the backup itself is unreadable: nothing to compare
             raise s.error
-        out.setdefault(s.rel.casefold(), s)
+        out.append(s)
     return out
+
+
+def _common_top(sources: list[Source]) -> bool:
+    """Whether every file lies in one top folder (an archive of the backup
+    folder itself: ``R1_BACKUP_2026-12-01/RAPID/...``)."""
+    tops = {s.rel.split("/", 1)[0].casefold() if "/" in s.rel else None for s in sources}
+    return len(tops) == 1 and None not in tops
+
+
+def _keyed(sources: list[Source], strip: bool) -> dict[str, tuple[str, Source]]:
+    out: dict[str, tuple[str, Source]] = {}
+    for s in sources:
+        rel = s.rel.split("/", 1)[1] if strip else s.rel
+        out.setdefault(rel.casefold(), (rel, s))
+    return out
+
+
+def pair(old: list[Source], new: list[Source]):
+    """Files keyed by their path inside each backup. Where one backup wraps
+    everything in a top folder the other has not (a zip of the backup folder
+    against the folder's contents), that folder is set aside: of the four
+    ways, the one pairing the most files wins (as given, on a tie)."""
+    best = None
+    for so in (False, True) if _common_top(old) else (False,):
+        for sn in (False, True) if _common_top(new) else (False,):
+            o, n = _keyed(old, so), _keyed(new, sn)
+            score = len(o.keys() & n.keys())
+            if best is None or score > best[0]:
+                best = (score, o, n)
+    return best[1], best[2]
 
 
 def _frame_names(src: Source, errors: list) -> list[str]:
@@ -35,18 +65,18 @@ def _frame_names(src: Source, errors: list) -> list[str]:
 def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
     from .review import diff_files, lines_changed_beyond_frames
 
-    olds, news = _sources(old_path), _sources(new_path)
+    olds, news = pair(_sources(old_path), _sources(new_path))
     errors: list[UcsioError] = []
     files_added, files_removed, files_changed = [], [], []
     changed, added, removed = [], [], []
     unchanged_files = 0
     for key in sorted(set(olds) | set(news)):
-        o, n = olds.get(key), news.get(key)
+        (orel, o), (nrel, n) = olds.get(key, (None, None)), news.get(key, (None, None))
         if o is None:
-            files_added.append({"path": n.rel, "file": n.name, "frames": _frame_names(n, errors)})
+            files_added.append({"path": nrel, "file": n.name, "frames": _frame_names(n, errors)})
             continue
         if n is None:
-            files_removed.append({"path": o.rel, "file": o.name,
+            files_removed.append({"path": orel, "file": o.name,
                                   "frames": _frame_names(o, errors)})
             continue
         try:
@@ -64,7 +94,7 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
             ncf = parse(Document(new_bytes, n.name))
         except UcsioError as exc:
             errors.append(exc)
-            files_changed.append({"path": n.rel, "old_file": o.name, "file": n.name,
+            files_changed.append({"path": nrel, "old_file": o.name, "file": n.name,
                                   "frames_changed": None, "frames_added": None,
                                   "frames_removed": None, "other_lines": None,
                                   "error": str(exc)})
@@ -72,8 +102,8 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
         r = diff_files(ocf, ncf)
         for key_, bucket in (("changed", changed), ("added", added), ("removed", removed)):
             for item in r[key_]:
-                bucket.append(dict(item, path=n.rel))
-        files_changed.append({"path": n.rel, "old_file": o.name, "file": n.name,
+                bucket.append(dict(item, path=nrel))
+        files_changed.append({"path": nrel, "old_file": o.name, "file": n.name,
                               "frames_changed": len(r["changed"]),
                               "frames_added": len(r["added"]),
                               "frames_removed": len(r["removed"]),
