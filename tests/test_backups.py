@@ -120,6 +120,8 @@ def test_frames_of_a_folder_are_the_frames_of_its_files(tmp_path):
     assert sorted(json.dumps(x, sort_keys=True) for x in whole["frames"]) == \
         sorted(json.dumps(x, sort_keys=True) for x in singles)
     assert not any(f["file"].endswith((".src", ".txt")) for f in whole["frames"])
+    read = whole["files"]                        # every file read, with frames or without
+    assert len(read) == len(files) + 3 and not any(f.endswith("TuneMasterLib.mod") for f in read)
     assert len(files) > 30 and len(whole["frames"]) > 100
 
 

@@ -23,6 +23,7 @@ def run(args) -> int:
     frames = [fr for _, c in parsed for fr in c.frames]
     if args.json:
         emit_json({"frames": [f.as_dict() for f in frames],
+                   "files": [c.path for _, c in parsed],      # every file read, frames or not
                    "errors": [e.as_dict() for e in errors]})
         report_failures(errors)
         return status
