@@ -132,3 +132,17 @@ def test_manifest_points_must_be_a_boolean(tmp_path):
                                      "frame = \"w\"\n")
     code, _ = run("batch", tmp_path / "m.toml")
     assert code == 2
+
+
+@pytest.mark.parametrize("controller, station", [
+    ("/plant/R01/KRC/R1/System/$config.dat", "R01"),
+    ("/plant/Line3/RAPID/TASK1/PROGMOD/Cell.mod", "Line3"),
+    ("/plant/R02/cell.mod", "R02"),
+])
+def test_default_station_is_the_folder_above_the_backup_layout(controller, station):
+    from ucsio.batch import Entry, EntryResult
+
+    entry = Entry(index=0, name="e", measurement="m.csv", controller=controller, frame="f",
+                  tcp=(0.0, 0.0, 0.0), tool=None)
+    assert EntryResult(entry=entry).station == station
+    assert EntryResult(entry=Entry(**{**entry.__dict__, "station": "cell 9"})).station == "cell 9"

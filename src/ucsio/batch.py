@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,6 +45,9 @@ from .frames import Pose, tool_tcp
 from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
+# folders that name a part of a backup, not a station (a station's default name is above them)
+_BACKUP_FOLDER = re.compile(r"(?:KRC|R\d|SYSTEM|PROGRAM|RAPID|TASK\d+|PROGMOD|SYSMOD|HOME)\Z",
+                            re.I)
 ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
               "min_points", "tolerance", "exclude", "no_exclusion", "reach", "points",
               "station")
@@ -305,13 +309,16 @@ class EntryResult:
 
     @property
     def station(self) -> str | None:
-        """The entry's ``station``, else its controller's folder."""
+        """The entry's ``station``, else its controller's folder, above the
+        folders every backup has (KRC/R1/System, RAPID/TASK1/PROGMOD)."""
         en = self.entry
         if en.station:
             return en.station
-        if en.controller:
-            return os.path.basename(os.path.dirname(en.controller)) or None
-        return None
+        if not en.controller:
+            return None
+        parts = os.path.normpath(en.controller).split(os.sep)[:-1]
+        named = [p for p in parts if p and not _BACKUP_FOLDER.match(p)]
+        return (named or parts or [None])[-1]
 
     @property
     def e(self) -> float | None:
