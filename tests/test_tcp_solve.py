@@ -216,3 +216,86 @@ def test_cli_tcp_solve(tmp_path, capsys):
     assert main(["solve", str(csv2), "--tcp", "solve"]) == 1
     assert "turn the flange" in capsys.readouterr().out
     assert main(["solve", str(csv), "--tcp", "solve", "--uncertainty", "100"]) == 2
+
+
+# ------------------------------------------------------------------ writing the TCP back
+
+ABB_TOOLS = ("MODULE Tools\n"
+             "  ! the reflector holder\n"
+             "  PERS tooldata tReflector:=[TRUE,[[10.2,-29.8,179.1],[0.707107,0,0.707107,0]],"
+             "[2.5,[0,0,80],[1,0,0,0],0.01,0.01,0.02]];\n"
+             "  PERS tooldata tGun:=[TRUE,[[0,0,250],[1,0,0,0]],[3,[0,0,100],[1,0,0,0],0,0,0]];\n"
+             "  PERS wobjdata wFix:=[FALSE,TRUE,\"\",[[1000,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n"
+             "ENDMODULE\n")
+KUKA_CONFIG = ("DEFDAT  $CONFIG\r\n"
+               "DECL TOOL_DATA[16]\r\n"
+               "FRAME TOOL_DATA[16]\r\n"
+               "TOOL_DATA[1]={X 10.2000,Y -29.8000,Z 179.100,A 90.0000,B 0.0,C -180.000}\r\n"
+               "TOOL_DATA[2]={X 0.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0}\r\n"
+               "DECL LOAD_DATA[16]\r\n"
+               "LOAD_DATA[1]={M 2.50000,CM {X 0.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 0.0},"
+               "J {X 0.01,Y 0.01,Z 0.02}}\r\n"
+               "ENDDAT\r\n")
+
+
+def solved_solution(tmp_path, capsys, spread=30, name="sol.json"):
+    meas, _, _ = cell(4, spread)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    out = tmp_path / name
+    main(["solve", str(csv), "--tcp", "solve", "-o", str(out)])
+    capsys.readouterr()
+    return out, json.loads(out.read_text())["tcp"]
+
+
+@pytest.mark.parametrize("vendor", ["abb", "kuka"])
+def test_patch_writes_the_solved_tcp_into_a_tool_and_nothing_else(tmp_path, capsys, vendor):
+    from ucsio.controller import load
+
+    sol, tcp = solved_solution(tmp_path, capsys)
+    if vendor == "abb":
+        f, text, name = tmp_path / "Tools.mod", ABB_TOOLS, "tReflector"
+    else:
+        f, text, name = tmp_path / "$config.dat", KUKA_CONFIG, "TOOL_DATA[1]"
+    f.write_bytes(text.encode())
+    before = load(f).frame(name)
+    assert main(["patch", str(f), "--frame", name, "--measured", str(sol)]) == 0
+    preview = capsys.readouterr().out
+    body = preview.splitlines()[2:]
+    assert sum(ln.startswith("-") for ln in body) == sum(ln.startswith("+") for ln in body) == 1
+    out = tmp_path / ("new" + f.suffix)
+    assert main(["patch", str(f), "--frame", name, "--measured", str(sol), "-o", str(out)]) == 0
+    after = load(out).frame(name)
+    assert after.pose.t == pytest.approx((tcp["x"], tcp["y"], tcp["z"]), abs=5e-4)
+    assert after.pose.q == before.pose.q and after.info.get("load") == before.info.get("load")
+    changed = {k for k in after.numbers if after.numbers[k].text != before.numbers[k].text}
+    assert changed == {"x", "y", "z"}
+    # every byte outside the three numbers is the original's
+    old, new = f.read_bytes(), out.read_bytes()
+    spans = sorted((before.numbers[k].span.start, before.numbers[k].span.end) for k in "xyz")
+    kept = old.decode()
+    for s0, s1 in reversed(spans):
+        kept = kept[:s0] + kept[s1:]
+    rest = new.decode()
+    for k in sorted("xyz", key=lambda k: -after.numbers[k].span.start):
+        sp = after.numbers[k].span
+        rest = rest[:sp.start] + rest[sp.end:]
+    assert rest == kept
+
+
+def test_patch_tool_refusals(tmp_path, capsys):
+    f = tmp_path / "Tools.mod"
+    f.write_text(ABB_TOOLS)
+    sol, _ = solved_solution(tmp_path, capsys)
+    meas, _, _ = cell(4, 30)
+    fixed = tmp_path / "fixed.json"
+    main(["solve", str(tmp_path / "m.csv"), "--tcp", "12.5,-30.25,180", "-o", str(fixed)])
+    capsys.readouterr()
+    # a solution with a given TCP has no TCP to write into a tool
+    assert main(["patch", str(f), "--frame", "tReflector", "--measured", str(fixed)]) == 2
+    assert "--tcp solve" in capsys.readouterr().err
+    # a rejected solve (+-2 deg) is refused, as for frames (exit 1)
+    bad, _ = solved_solution(tmp_path, capsys, spread=2, name="bad.json")
+    assert main(["patch", str(f), "--frame", "tReflector", "--measured", str(bad)]) == 1
+    # a solved solution on a work object writes the frame, as before
+    assert main(["patch", str(f), "--frame", "wFix", "--measured", str(sol)]) == 0
+    assert "wFix" in capsys.readouterr().out

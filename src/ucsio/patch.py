@@ -491,7 +491,7 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
 def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,
                 force: bool = False, oframe: bool = False,
                 check_siblings: bool = True, verify: bool = True,
-                load=None) -> PatchResult:
+                load=None, translation_only: bool = False) -> PatchResult:
     """Plan the patch of frame ``name`` in ``cf`` to ``pose``.
 
     ``measured``: the pose is a measured solution (the UCS in robot world), so
@@ -536,7 +536,11 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
             if not force:
                 raise UcsioError(msg + " (--force patches this file only)", **where)
             warnings.append(msg + " (patched this file only: --force)")
-    changes = plan(frame, pose)
+    if translation_only:      # a solved TCP: x, y, z; the orientation stays as written
+        plan(frame, pose)     # the refusals: a component with no literal value
+        changes = _translation_changes(frame, pose, point=frame.vendor == "kuka")
+    else:
+        changes = plan(frame, pose)
     doc = cf.document
     new_bytes = doc.edited_bytes(edits_for(frame, changes))
     result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
@@ -544,6 +548,32 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     if verify:
         globals()["verify"](result)     # the function (the keyword shadows its name)
     return result
+
+
+def robot_held_tool(frame: Frame) -> bool:
+    """A TCP in flange coordinates lives here: an ABB tooldata with robhold
+    TRUE, a KUKA TOOL_DATA used as a tool (not a robot-guided workpiece)."""
+    return (frame.type in ("tooldata", "TOOL_DATA") and frame.reference == "flange"
+            and frame.info.get("robhold") is not False
+            and frame.info.get("role", "tool") == "tool")
+
+
+def patch_tcp(cf: ControllerFile, name: str, tcp, **options) -> PatchResult:
+    """Write a solved TCP (x, y, z in flange coordinates, ``solve --tcp
+    solve``) into a robot-held tool: its translation only; orientation, mass
+    and load stay as written. The same refusals, read-back check and writing
+    as a frame patch."""
+    frame = cf.frame(name)
+    if not robot_held_tool(frame):
+        raise UcsioError(f"{frame.name}: a solved TCP belongs in a robot-held tool (tooldata "
+                         f"with robhold TRUE, KUKA TOOL_DATA); this is {frame.type} relative to "
+                         f"{frame.reference}", file=frame.file, line=frame.line)
+    if frame.pose is None:
+        raise UcsioError(f"{frame.name}: the file gives no literal value for this tool; "
+                         "nothing to patch", file=frame.file, line=frame.line)
+    old = frame.pose
+    target = Pose(float(tcp[0]), float(tcp[1]), float(tcp[2]), old.q, old.abc)
+    return patch_frame(cf, name, target, measured=False, translation_only=True, **options)
 
 
 def reads_back(frame: Frame | None, pose: Pose) -> bool:

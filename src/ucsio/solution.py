@@ -23,6 +23,29 @@ def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose
     ``allow_rejected``; q and a, b, c given together must agree. A file that
     is not UTF-8 (a BOM is allowed) is a UcsioError, like bad JSON."""
     path = os.fspath(path)
+    return pose_from_json(read_json(path), path, allow_rejected)
+
+
+def solved_tcp(data: Any, path: str | None = None,
+               allow_rejected: bool = False) -> tuple[float, float, float] | None:
+    """The TCP a ``solve --tcp solve`` found (``"tcp": {x, y, z, "solved":
+    true}``), or None where the solution gives the TCP it was handed. A
+    rejected dataset's TCP is refused unless ``allow_rejected``."""
+    tcp = data.get("tcp") if isinstance(data, dict) else None
+    if not isinstance(tcp, dict) or tcp.get("solved") is not True:
+        return None
+    pose_from_json(data, path, allow_rejected)          # the same refusals as the frame's
+    vals = []
+    for k in "xyz":
+        v = tcp.get(k)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise UcsioError(f"tcp key {k!r} missing or not a finite number", file=path)
+        vals.append(float(v))
+    return tuple(vals)  # type: ignore[return-value]
+
+
+def read_json(path: str) -> Any:
+    """A SOLUTION.json's data; not UTF-8 or not JSON is a UcsioError."""
     raw = read_bytes(path, "solution file")
     bom = 3 if raw.startswith(b"\xef\xbb\xbf") else 0
     try:
@@ -37,7 +60,7 @@ def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose
     except json.JSONDecodeError as exc:
         raise UcsioError(f"not valid JSON: {exc.msg}", file=path, line=exc.lineno,
                          col=exc.colno) from None
-    return pose_from_json(data, path, allow_rejected)
+    return data
 
 
 def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = False) -> Pose:
