@@ -299,3 +299,38 @@ def test_patch_tool_refusals(tmp_path, capsys):
     # a solved solution on a work object writes the frame, as before
     assert main(["patch", str(f), "--frame", "wFix", "--measured", str(sol)]) == 0
     assert "wFix" in capsys.readouterr().out
+
+
+# ------------------------------------------------------------------ batch
+
+def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
+    from ucsio.batch import read_manifest, run_batch
+
+    meas, _, _ = cell(4, 30)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    (tmp_path / "laser.txt").write_text("".join(
+        f"{nm};{l[0]!r};{l[1]!r};{l[2]!r}\n".replace(".", ",")
+        for nm, l in zip(meas.names, meas.laser.tolist())))
+    rows = ["point,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
+    for nm, T in zip(meas.names, meas.flange):
+        a = Rotation.from_matrix(T[:3, :3]).as_euler("ZYX", degrees=True)
+        rows.append(",".join([nm] + [repr(float(v)) for v in (*T[:3, 3], *a)]))
+    (tmp_path / "robot.csv").write_text("\n".join(rows) + "\n")
+    (tmp_path / "Cell.mod").write_text(ABB_TOOLS)
+    (tmp_path / "station.toml").write_text(
+        '[defaults]\ncontroller = "Cell.mod"\nframe = "wFix"\ntolerance = 5000.0\n\n'
+        '[[entry]]\nname = "paired, solved"\nlaser = "laser.txt"\nrobot = "robot.csv"\n'
+        'tcp = "solve"\n\n'
+        '[[entry]]\nname = "merged, solved"\nmeasurement = "m.csv"\ntcp = "solve"\n\n'
+        '[[entry]]\nname = "merged, given"\nmeasurement = "m.csv"\ntcp = [12.5, -30.25, 180.0]\n\n'
+        '[[entry]]\nname = "half"\nlaser = "laser.txt"\ntcp = "solve"\n')
+    res = run_batch(read_manifest(tmp_path / "station.toml"))
+    paired, merged, given, half = res.entries
+    assert paired.accepted and merged.accepted and given.accepted
+    assert paired.solution.tcp == pytest.approx(merged.solution.tcp, abs=1e-9)
+    assert np.linalg.norm(np.array(paired.solution.tcp) - TCP) < 0.5
+    d = paired.as_dict()
+    assert d["tcp_solved"]["solved"] is True and d["sources"]["robot"].endswith("robot.csv")
+    assert given.solution.tcp == (12.5, -30.25, 180.0)
+    assert half.error and "laser and robot" in half.error
+    assert main(["solve", str(csv), "--tcp", "solve"]) == 0

@@ -48,11 +48,15 @@ N_GROUPS = len(GROUP_BOUNDS) + 1
 # folders that name a part of a backup, not a station (a station's default name is above them)
 _BACKUP_FOLDER = re.compile(r"(?:KRC|R\d|SYSTEM|PROGRAM|RAPID|TASK\d+|PROGMOD|SYSMOD|HOME)\Z",
                             re.I)
-ENTRY_KEYS = ("name", "measurement", "controller", "frame", "tcp", "tool", "threshold",
-              "min_points", "tolerance", "exclude", "no_exclusion", "reach", "points",
-              "station")
+#: the two sides of a measurement where they live, instead of ``measurement``
+#: (``solve --laser/--robot``; paths resolved like the others)
+SOURCE_KEYS = ("laser", "robot", "config", "map")
+SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj")
+ENTRY_KEYS = ("name", "measurement", *SOURCE_KEYS, *SOURCE_OPTIONS, "controller", "frame", "tcp",
+              "tool", "threshold", "min_points", "tolerance", "exclude", "no_exclusion", "reach",
+              "points", "station")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
-REQUIRED = ("measurement", "controller", "frame")
+REQUIRED = ("controller", "frame")
 
 Progress = Callable[[str, int, int], None]
 
@@ -77,6 +81,8 @@ class Entry:
     points: bool = False              # also how far the frame's taught points move
     station: str | None = None        # the report's roll-up (default: the controller's folder)
     problem: str | None = None        # why this entry cannot run (a bad value in its table)
+    solve_tcp: bool = False           # tcp = "solve": the TCP estimated with the frame
+    sources: dict | None = None       # laser, robot, config, map, laser_units, robot_tool, robot_wobj
 
 
 @dataclass
@@ -112,7 +118,7 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
 
 def _check_values(table: dict, where: str, path: str) -> None:
     """The type and range of every value a table gives (UcsioError)."""
-    for k in REQUIRED:
+    for k in REQUIRED + ("measurement",) + SOURCE_KEYS + SOURCE_OPTIONS:
         if k in table and (not isinstance(table[k], str) or not table[k].strip()):
             raise UcsioError(f"{where}: {k} must be a non-empty string, got {table[k]!r}",
                              file=path)
@@ -121,11 +127,14 @@ def _check_values(table: dict, where: str, path: str) -> None:
         file, sep, tname = spec.rpartition(":") if isinstance(spec, str) else ("", "", "")
         if not sep or not file or not tname:
             raise UcsioError(f"{where}: tool must be \"FILE:NAME\", got {spec!r}", file=path)
-    if "tcp" in table:
+    if "laser_units" in table and table["laser_units"] not in ("mm", "m", "in"):
+        raise UcsioError(f"{where}: laser_units must be \"mm\", \"m\" or \"in\", got "
+                         f"{table['laser_units']!r}", file=path)
+    if "tcp" in table and table["tcp"] != "solve":
         v = table["tcp"]
         if not isinstance(v, list) or len(v) != 3:
-            raise UcsioError(f"{where}: tcp must be a list of three numbers [x, y, z], got {v!r}",
-                             file=path)
+            raise UcsioError(f"{where}: tcp must be a list of three numbers [x, y, z] or "
+                             f"\"solve\", got {v!r}", file=path)
         for c in v:
             _number(c, "tcp", where, path)
     for k in ("threshold", "tolerance", "reach"):
@@ -158,15 +167,36 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
         merged.pop("tcp", None)
         merged.pop("tool", None)
     merged.update(raw)
+    # the measurement: one merged file, or the laser and robot sides
+    if "measurement" in raw and ("laser" in raw or "robot" in raw):
+        raise UcsioError(f"{label}: give measurement, or laser and robot, not both", file=path)
+    if "measurement" in raw:                   # the entry's own kind of measurement wins
+        merged.pop("laser", None)
+        merged.pop("robot", None)
+    elif "laser" in raw or "robot" in raw:
+        merged.pop("measurement", None)
+    if "measurement" not in merged:
+        if "laser" not in merged or "robot" not in merged:
+            raise UcsioError(f"{label}: needs measurement (a merged CSV), or laser and robot",
+                             file=path)
+    elif "laser" in merged or "robot" in merged:
+        raise UcsioError(f"{label}: give measurement, or laser and robot, not both", file=path)
     for k in REQUIRED:
         if not isinstance(merged.get(k), str) or not merged[k].strip():
             raise UcsioError(f"{label}: needs {k} (a string)", file=path)
     _check_values(merged, label, path)
+    sources = None
+    if "measurement" not in merged:
+        sources = {k: _resolve(base, merged[k]) for k in SOURCE_KEYS if k in merged}
+        sources.update({k: merged[k] for k in SOURCE_OPTIONS if k in merged})
     tcp = None
     tool = None
+    solve_tcp = False
     if "tool" in merged:
         file, _, tname = merged["tool"].rpartition(":")
         tool = f"{_resolve(base, file)}:{tname}"
+    elif merged.get("tcp") == "solve":
+        solve_tcp = True
     elif "tcp" in merged:
         tcp = tuple(float(c) for c in merged["tcp"])
     else:       # SPEC point 8: never a silent 0,0,0
@@ -177,14 +207,17 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
     ex = merged.get("exclude", [])
     if isinstance(ex, str):
         ex = [ex]
-    return Entry(index=i, name=name, measurement=_resolve(base, merged["measurement"]),
+    measurement = (_resolve(base, merged["measurement"]) if sources is None
+                   else sources["laser"])
+    return Entry(index=i, name=name, measurement=measurement,
                  controller=_resolve(base, merged["controller"]), frame=merged["frame"],
                  tcp=tcp, tool=tool, threshold=float(merged.get("threshold", THRESHOLD)),
                  min_points=merged.get("min_points", MIN_POINTS),
                  tolerance=float(merged.get("tolerance", DEFAULT_TOLERANCE)),
                  exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False),
                  reach=float(merged.get("reach", REACH)),
-                 points=merged.get("points", False), station=merged.get("station"))
+                 points=merged.get("points", False), station=merged.get("station"),
+                 solve_tcp=solve_tcp, sources=sources)
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -280,6 +313,7 @@ class EntryResult:
     uncertainty_error: str | None = None  # why --uncertainty gave nothing for this entry
     points_moved: dict | None = None      # points = true: count, max, mean, worst (taught points)
     points_error: str | None = None       # why they could not be placed
+    warnings: list[str] = field(default_factory=list)   # pairing a laser and a robot file
 
     @property
     def accepted(self) -> bool:
@@ -372,6 +406,12 @@ class EntryResult:
             d["points_moved"] = self.points_moved
         if self.points_error is not None:
             d["points_error"] = self.points_error
+        if en.sources is not None:
+            d["sources"] = en.sources
+        if s is not None and getattr(s, "tcp_solved", None):
+            d["tcp_solved"] = s.tcp_solved
+        if self.warnings:
+            d["warnings"] = list(self.warnings)
         if self.patched is not None:
             d["patched"] = self.patched
         if self.patch_error is not None:
@@ -424,6 +464,31 @@ class _Cache:
     def measurement(self, path: str):
         from .measurement import read_measurement
         return self._get(self.measurements, path, read_measurement)
+
+    def paired(self, sources: dict):
+        """(Measurement, warnings) of an entry's laser and robot files."""
+        key = tuple(sorted(sources.items()))
+
+        def read(_):
+            from .readers import laser, pairing, robot
+            lp = laser.read_laser(sources["laser"], sources.get("laser_units", "mm"))
+            rp = robot.read_robot(sources["robot"], config=sources.get("config"),
+                                  tool=sources.get("robot_tool", "tool0"),
+                                  wobj=sources.get("robot_wobj", "wobj0"))
+            mapping = pairing.read_map(sources["map"]) if "map" in sources else ()
+            return pairing.pair(lp, rp, mapping, sources.get("map"))
+        return self._get(self.measurements, key, read)
+
+
+def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float):
+    """An entry with tcp = "solve": its Solution, or the UcsioError."""
+    from .tcp_solve import solve_joint
+    try:
+        return solve_joint(meas, threshold=en.threshold, min_points=en.min_points,
+                           exclude=en.exclude, no_exclusion=en.no_exclusion, reach=en.reach,
+                           sigma_laser=sigma_laser, sigma_robot=sigma_robot)
+    except UcsioError as exc:
+        return exc
 
 
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
@@ -486,6 +551,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     owners: list[int] = []
     frames: dict[int, Any] = {}
     read: dict[int, tuple] = {}         # entry index -> (tcp, measurement): run-local state
+    joint: list[int] = []               # entries with tcp = "solve" (ucsio.tcp_solve)
     total = len(results)
     for k, r in enumerate(results):
         en = r.entry
@@ -508,7 +574,14 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             stage = "tool"
             tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
             stage = "measurement"
-            meas = cache.measurement(en.measurement)
+            if en.sources is None:
+                meas = cache.measurement(en.measurement)
+            else:
+                meas, r.warnings = cache.paired(en.sources)
+            if en.solve_tcp:                # the joint model: solved on its own, below
+                joint.append(k)
+                read[k] = (None, meas)
+                continue
             datasets.append(Dataset(names=meas.names, laser=meas.laser,
                                     robot=meas.robot_points(tcp), weights=meas.weights,
                                     threshold=en.threshold, min_points=en.min_points,
@@ -525,13 +598,17 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     t1 = time.perf_counter()
 
     solved = solve_many(datasets) if datasets else []
+    for k in joint:
+        owners.append(k)
+        solved.append(_solve_joint(results[k].entry, read[k][1], sigma_laser, sigma_robot))
     t2 = time.perf_counter()
     for k, sol in zip(owners, solved):
         r = results[k]
         if isinstance(sol, UcsioError):
             r.error, r.stage = str(sol), "solve"
             continue
-        sol.tcp = tuple(float(v) for v in read[k][0])
+        if read[k][0] is not None:
+            sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool
         r.solution = sol
         cf, frame = frames[k]
@@ -548,6 +625,10 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
 
     if uncertainty:
         todo = [k for k, r in enumerate(results) if r.accepted]
+        for k in [k for k in todo if results[k].entry.solve_tcp]:
+            results[k].uncertainty_error = ("not available with tcp = \"solve\" (the first-order "
+                                            "numbers are in its precision)")
+            todo.remove(k)
         for j, k in enumerate(todo):
             r = results[k]
             try:
