@@ -348,7 +348,8 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
         return ("the object frame is relative to a user frame that is not a fixed frame "
                 "in robot world; patch the user frame instead")
     if ref == "flange":
-        return "this tool is held by the robot: its frame is relative to the flange, not world"
+        return ("this tool is held by the robot: its frame is relative to the flange, not world "
+                "(a TCP solved with `solve --tcp solve` is what can be written here)")
     if ref == "machine":
         return "this base is on an external kinematic (MACHINE_FRAME_DAT): not relative to world"
     if ref == "wrist":

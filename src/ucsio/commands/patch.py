@@ -22,21 +22,12 @@ solution for a frame that is not relative to world (a robot-held tool, KUKA
 BASE_TYPE #TCP or a base on an external kinematic, an ABB wobj with robhold
 TRUE, an oframe of a moving or robot-held wobj) or a RAPID PERS that another
 module in the same folder also declares (RAPID shares it; --force overrides
-    tcp = solved_tcp_for(cf, args) if measured else None
-    if tcp is not None:
-        from ..patch import patch_tcp
-        result = patch_tcp(cf, args.frame, tcp, force=args.force)
-    else:
-        result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,
-                             oframe=args.oframe)
-    if args.output == "-":         # the patched file is the data on stdout
-        for w in result.warnings:
-            print(f"ucsio: warning: {w}", file=sys.stderr)
-        sys.stderr.write(paint_diff(result.diff, sys.stderr))
-        sys.stdout.flush()
-        sys.stdout.buffer.write(result.new_bytes)
-        sys.stdout.buffer.flush()
-        return 0
+these two), an archive member, a rejected solution, and a file that changed on
+disk since it was read. A robot-held tool (ABB tooldata with robhold TRUE, KUKA
+TOOL_DATA) with a solution from `solve --tcp solve` gets the solved TCP's x, y,
+z and nothing else (orientation, mass and load stay); a solution whose TCP was
+given has none to write there (exit 2). --set and --set-q take the values as
+given, in the frame's own
 reference (negative values need no "=": --set -5,1,2,0,0,0)."""
 from __future__ import annotations
 
@@ -98,21 +89,15 @@ def target_pose(args):
 def solved_tcp_for(cf, args):
     """The solved TCP to write when --frame names a robot-held tool (SPEC:
     patch on a tool writes the solved TCP's x, y, z and nothing else of it);
-    None for every other frame. A tool with a solution whose TCP was given,
-    not solved, is refused: its frame is the UCS, not a TCP."""
-    from ..errors import UcsioError
+    None for every other frame, and where the solution's TCP was given, not
+    solved (patch_frame then refuses a world frame for a tool, as before)."""
     from ..patch import resolve_name, robot_held_tool
     from ..solution import solved_tcp
 
     frame = cf.frame(resolve_name(args.frame, args.oframe))
     if not robot_held_tool(frame):
         return None
-    tcp = solved_tcp(args.solution_data, args.measured, allow_rejected=args.force)
-    if tcp is None:
-        raise UcsioError(f"{frame.name} is a robot-held tool, and {args.measured} has no solved "
-                         "TCP: solve with --tcp solve to write the TCP into a tool",
-                         file=args.measured)
-    return tcp
+    return solved_tcp(args.solution_data, args.measured, allow_rejected=args.force)
 
 
 def run(args) -> int:
@@ -130,11 +115,21 @@ def run(args) -> int:
     refuse_member(args.file)
     pose, measured = target_pose(args)
     cf = load(args.file)
-these two), an archive member, a rejected solution, and a file that changed on
-disk since it was read. A robot-held tool (ABB tooldata with robhold TRUE, KUKA
-TOOL_DATA) with a solution from `solve --tcp solve` gets the solved TCP's x, y,
-z and nothing else (orientation, mass and load stay); a solution whose TCP was
-given has none to write there (exit 2). --set and --set-q take the values as given, in the frame's own
+    tcp = solved_tcp_for(cf, args) if measured else None
+    if tcp is not None:
+        from ..patch import patch_tcp
+        result = patch_tcp(cf, args.frame, tcp, force=args.force)
+    else:
+        result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,
+                             oframe=args.oframe)
+    if args.output == "-":         # the patched file is the data on stdout
+        for w in result.warnings:
+            print(f"ucsio: warning: {w}", file=sys.stderr)
+        sys.stderr.write(paint_diff(result.diff, sys.stderr))
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.new_bytes)
+        sys.stdout.buffer.flush()
+        return 0
     if args.in_place or args.output:
         if result.changed or args.output:
             save(result, args.output, backup=args.backup)
