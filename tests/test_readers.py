@@ -365,3 +365,8 @@ def test_abb_robtargets_of_a_real_module():
     assert (t.name, t.module) == ("CAL_POSE_1", "RcHandEyeCalibrationExample")
     assert t.pose.t == (232.4, 382.9, 885.4)
     assert len(targets) == 8
+
+
+def test_spec_csv_after_an_excel_separator_hint(tmp_path):
+    pts = read_laser(write(tmp_path, "l.csv", "sep=;\npoint;laser_x;laser_y;laser_z\nA;1,5;2;3\n"))
+    assert pts.format == "csv" and pts.xyz.tolist() == [[1.5, 2.0, 3.0]]

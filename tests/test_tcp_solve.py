@@ -334,3 +334,12 @@ def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
     assert given.solution.tcp == (12.5, -30.25, 180.0)
     assert half.error and "laser and robot" in half.error
     assert main(["solve", str(csv), "--tcp", "solve"]) == 0
+
+
+def test_api_solve_with_tcp_solve(tmp_path):
+    from ucsio import api
+
+    meas, _, _ = cell(4, 30)
+    sol = api.solve(csv_of(meas, tmp_path / "m.csv"), tcp="solve")
+    assert sol.accepted and sol.tcp_solved["solved"] is True
+    assert np.linalg.norm(np.array(sol.tcp) - TCP) < 0.5

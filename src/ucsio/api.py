@@ -54,10 +54,14 @@ def solve(csv: PathLike, tcp, **options):
     """Solve a measurement file (``ucsio solve``): returns the solver's
     Solution (``.pose``, ``.accepted``, ``.points``, ``.rms``, ``.precision``,
     ``.as_dict()``). ``tcp``: the reflector in flange coordinates (x, y, z) mm,
-    no default (SPEC: never a silent 0,0,0). ``options``: threshold,
+    no default (SPEC: never a silent 0,0,0), or ``"solve"`` to estimate it
+    with the frame (``ucsio.tcp_solve``). ``options``: threshold,
     min_points, exclude, no_exclusion, reach, sigma_laser, sigma_robot."""
     from .measurement import read_measurement
     from .solve import solve as _solve
+    if isinstance(tcp, str) and tcp.strip().casefold() == "solve":
+        from .tcp_solve import solve_joint   # the TCP solved with the frame
+        return solve_joint(read_measurement(csv), **options)
     return _solve(read_measurement(csv), tcp, **options)
 
 

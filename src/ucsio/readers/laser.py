@@ -46,8 +46,8 @@ class LaserPoints:
 # ---------------------------------------------------------------- formats
 
 def is_spec_csv(text: str) -> bool:
-    rows = content_lines(text)
-    return bool(rows) and "laser_x" in rows[0][1].lower()
+    """A header with laser_x, on the first line or after Excel's sep= hint."""
+    return any("laser_x" in line.lower() for _, line in content_lines(text)[:2])
 
 
 def spec_csv(text: str, path: str) -> LaserPoints:
