@@ -30,7 +30,9 @@ def test_demo_text(tmp_path):
     out = r.stdout
     for needle in ("cell R01 (KUKA)", "cell R02 (ABB)", "EXCLUDED (auto)", "accepted",
                    "group 1, PASS", "--- a/R01_kuka/$config.dat", "+BASE_DATA[3]={X 6125.",
-                   "--- a/R02_abb/CellR02.mod", "demo: 2 cells, every cell passes."):
+                   "--- a/R02_abb/CellR02.mod", "cell R03 (KUKA)", "solved with the frame",
+                   "+TOOL_DATA[2]={X 0.8", "+BASE_DATA[1]={X 3252.8",
+                   "demo: 3 cells, every cell passes."):
         assert needle in out
     assert list(tmp_path.iterdir()) == []          # nothing written
 
@@ -39,7 +41,7 @@ def test_demo_json_and_out(tmp_path):
     r = run(tmp_path, "--json", "--out", "patched")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
-    assert d["ok"] is True and len(d["cells"]) == 2
+    assert d["ok"] is True and len(d["cells"]) == 3
     for cell in d["cells"]:
         assert cell["solve"]["accepted"] is True
         assert cell["solve"]["n_used"] == cell["solve"]["n_points"] - 1      # the blunder
@@ -60,7 +62,7 @@ def test_demo_json_and_out(tmp_path):
 def test_demo_api():
     from ucsio import api
     d = api.demo()
-    assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02"]
+    assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02", "R03"]
 
 
 def test_demo_gate_and_bad_out(tmp_path):
@@ -81,7 +83,7 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
     from pathlib import Path
     r = run(tmp_path, "--out", "out")
     assert r.returncode == 0, r.stderr
-    assert "wrote" not in r.stdout and r.stderr.count("replay.sh") == 2
+    assert "wrote" not in r.stdout and r.stderr.count("replay.sh") == len(CELLS)
     data = resources.files("ucsio.demo").joinpath("data")
     bindir = tmp_path / "bin"                     # `ucsio` as a user has it after pip install
     bindir.mkdir()
@@ -95,6 +97,9 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
         ctl, meas = Path(cell.controller).name, Path(cell.measurement).name
         assert (folder / ctl).read_bytes() == data.joinpath(cell.controller).read_bytes()
         assert (folder / meas).read_bytes() == data.joinpath(cell.measurement).read_bytes()
+        if cell.robot:
+            robot = Path(cell.robot).name
+            assert (folder / robot).read_bytes() == data.joinpath(cell.robot).read_bytes()
         demo_solution = json.loads((folder / "solution.json").read_text())
         demo_patched = (folder / "patched" / ctl).read_bytes()
         replay = shutil.copytree(folder, tmp_path / "replay" / folder.name)
@@ -106,3 +111,23 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
         assert json.loads((replay / "solution.json").read_text())["frame"] == demo_solution["frame"]
         assert (replay / "patched" / ctl).read_bytes() == demo_patched
         assert f"~ {cell.frame}" in res.stdout or "value changed" in res.stdout
+
+
+def test_demo_third_cell_solves_the_tcp_and_patches_base_and_tool(tmp_path):
+    """R03: a SpatialAnalyzer export and a KUKA measurement program; the true
+    TCP (0.85, -1.40, 216.90, make_demo.py) 2.4 mm from the nominal one and
+    the true base come back, and the patched copy carries both."""
+    r = run(tmp_path, "--json", "--out", "out")
+    assert r.returncode == 0, r.stderr
+    cell = json.loads(r.stdout)["cells"][2]
+    tcp = cell["solve"]["tcp"]
+    assert tcp["solved"] is True
+    assert [tcp[k] for k in "xyz"] == pytest.approx([0.85, -1.40, 216.90], abs=0.2)
+    m = cell["solve"]["frame"]
+    assert [m[k] for k in "xyz"] == pytest.approx([3252.84, -776.93, 641.72], abs=0.2)
+    assert [p["name"] for p in cell["solve"]["points"] if not p["used"]] == ["P6"]
+    patched = load(tmp_path / cell["patch"]["written"])
+    assert patched.frame("SMR_adapter").pose.t == pytest.approx(
+        (tcp["x"], tcp["y"], tcp["z"]), abs=5e-4)
+    assert patched.frame("SMR_adapter").pose.abc == (0.0, 0.0, 0.0)
+    assert {c["component"] for c in cell["patch"]["changes"]} >= {"x", "y", "z", "a"}

@@ -1,6 +1,8 @@
 """The whole job on the example cells shipped with ucsio (a KUKA $config.dat and
 an ABB RAPID module, each with a laser-tracker measurement holding one
-blunder): solve, diff against the simulated frame, preview the patch. Nothing
+blunder; and a KUKA cell measured where the data live, a SpatialAnalyzer
+export and the measurement program's .dat, whose reflector TCP is solved with
+the frame): solve, diff against the simulated frame, preview the patch. Nothing
 is written unless --out DIR is given: then DIR/<cell>/ holds the cell's inputs
 (controller file, measurement CSV), solution.json, the patched copy under
 patched/, and replay.sh with every step as the ucsio command to type. The
@@ -57,10 +59,21 @@ def print_cell(cell: dict) -> None:
     print(f"controller   {cell['controller']}   frame {cell['frame']}{label}")
     tool = cell["tool"]
     tl = f" \"{tool['label']}\"" if tool.get("label") else ""
-    print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: "
-          + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
-    print()
-    print("1. solve (Horn's method, leave-one-out outlier exclusion)")
+    solved = s.get("tcp") if isinstance(s.get("tcp"), dict) and s["tcp"].get("solved") else None
+    if solved:
+        print(f"laser        {cell['measurement']}   robot {cell['robot']}")
+        print(f"TCP of {tool['name']}{tl}: nominal "
+              + ", ".join(f"{v:.3f}" for v in tool["tcp"]) + ", solved with the frame")
+        for w in cell.get("warnings") or ():
+            print(f"warning: {w}")
+        print()
+        print("1. solve (the TCP with the frame: linear start, Gauss-Newton; leave-one-out "
+              "outlier exclusion)")
+    else:
+        print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: "
+              + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
+        print()
+        print("1. solve (Horn's method, leave-one-out outlier exclusion)")
     rows = []
     for p in s["points"]:
         loo = p["loo_residual"]
@@ -71,6 +84,11 @@ def print_cell(cell: dict) -> None:
     print(f"   {s['n_used']} of {s['n_points']} points used, rms {s['rms']:.3f} mm, "
           f"max {s['max']:.3f} mm (threshold {threshold:g} mm): "
           + (paint("accepted", "pass") if s["accepted"] else paint("REJECTED: measure again", "fail")))
+    if solved:
+        std = solved["std"]
+        print(f"   TCP {solved['x']:.3f}, {solved['y']:.3f}, {solved['z']:.3f} mm "
+              f"(std {std['x']:.3f} {std['y']:.3f} {std['z']:.3f}; nominal was "
+              + ", ".join(f"{v:.3f}" for v in tool["tcp"]) + ")")
     print()
     print("2. diff: measured - simulated")
     sim, mea = d["simulated"], d["measured"]
@@ -83,7 +101,8 @@ def print_cell(cell: dict) -> None:
           f"group {d['group']}, {paint('PASS', 'pass') if d['pass'] else paint('FAIL', 'fail')} "
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
     print()
-    print("3. patch preview (only the frame's numbers change)")
+    print("3. patch preview (only the frame's numbers change"
+          + (f", and {tool['name']}'s x, y, z)" if solved else ")"))
     print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))
 
 

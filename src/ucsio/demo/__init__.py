@@ -3,7 +3,11 @@
 Each cell is a controller file with a simulated frame, a measurement file of
 laser/robot point pairs (synthetic: a known true frame, 0.02 mm noise and one
 blunder; fixtures/demo/make_demo.py regenerates them) and the tool that
-carried the reflector. The demo solves, diffs the simulated frame against the
+carried the reflector. The third cell starts where a measurement really
+lives: a SpatialAnalyzer export of the laser points and the KUKA measurement
+program's data list (E6POS with FDAT), and solves the reflector's TCP with
+the frame, because the adapter was never measured; it patches both the base
+and the tool's x, y, z. The demo solves, diffs the simulated frame against the
 measured one, and previews the patch as a unified diff. ``out`` writes, per
 cell, the inputs (controller file, measurement), the solution and the patched
 copy (never the shipped files), with ``replay.sh``: the same steps as ucsio
@@ -30,6 +34,8 @@ class Cell:
     measurement: str
     tool: str            # the tool carrying the reflector (its x, y, z is the TCP)
     story: str
+    robot: str | None = None     # the robot side's own file: measurement is then the laser's,
+                                 # and the TCP is solved with the frame (and patched into tool)
 
 
 CELLS = (
@@ -39,6 +45,11 @@ CELLS = (
     Cell("R02", "abb", "R02_abb/CellR02.mod", "wobjTable", "R02_abb/table_points.csv",
          "tReflector",
          "ABB IRB 4600 at a press table: wobjTable's user frame as simulated vs measured"),
+    Cell("R03", "kuka", "R03_kuka/$config.dat", "jig_B", "R03_kuka/jig_points.txt",
+         "SMR_adapter",
+         "KUKA KR 120 at a fixing jig, from a SpatialAnalyzer export and the measurement "
+         "program's MEASURE.dat: BASE_DATA[1] and the never-measured reflector adapter's TCP",
+         robot="R03_kuka/MEASURE.dat"),
 )
 
 
@@ -61,10 +72,16 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     cf = load(controller)
     tool = cf.frame(cell.tool)
     tcp = tool_tcp(tool)
-    sol = solve(read_measurement(root / cell.measurement), tcp)
+    warnings: list[str] = []
+    if cell.robot is None:
+        sol = solve(read_measurement(root / cell.measurement), tcp)
+    else:
+        sol, warnings = _solve_where_it_lives(cell, root)
     sim = cf.frame(cell.frame)
     d = diff_frame(cf, cell.frame, sol.pose, tol)
     result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
+    if cell.robot is not None:
+        result = _with_tcp(cf, result, cell.tool, sol.tcp)
     written = folder = None
     if out is not None:
         folder = Path(out) / Path(cell.controller).parent.name
@@ -78,6 +95,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
         "controller": cell.controller, "measurement": cell.measurement,
         "frame": sim.name, "label": sim.label,
         "tool": {"name": tool.name, "label": tool.label, "tcp": list(tcp)},
+        "robot": cell.robot, "warnings": warnings,
         "solve": sol.as_dict(),
         "diff": d,
         "patch": {"changes": [c.as_dict() for c in result.changes],
@@ -88,6 +106,34 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
         "folder": str(folder) if folder is not None else None,
         "ok": bool(sol.accepted and d["pass"]),
     }
+
+
+def _solve_where_it_lives(cell: Cell, root: Path):
+    """The third cell: laser export + measurement program, TCP solved."""
+    from ..readers.laser import read_laser
+    from ..readers.pairing import pair
+    from ..readers.robot import read_robot
+    from ..tcp_solve import solve_joint
+
+    meas, warnings = pair(read_laser(root / cell.measurement),
+                          read_robot(root / cell.robot, config=str(root / cell.controller)))
+    return solve_joint(meas), warnings
+
+
+def _with_tcp(cf, result, tool: str, tcp):
+    """The frame's patch and the solved TCP's, as one patch of the file: the
+    TCP goes into the frame-patched text, and the result replaces the
+    original's bytes (what ``save`` checks against the file on disk)."""
+    from dataclasses import replace
+
+    from ..controller import parse
+    from ..document import Document
+    from ..patch import patch_tcp
+
+    again = parse(Document(result.new_bytes, cf.path))
+    tool_patch = patch_tcp(again, tool, tcp, check_siblings=False)
+    return replace(result, new_bytes=tool_patch.new_bytes,
+                   changes=result.changes + tool_patch.changes)
 
 
 def _mkdir(folder: Path) -> None:
@@ -103,6 +149,31 @@ def replay_script(cell: Cell) -> str:
     ctl = Path(cell.controller).name
     meas = Path(cell.measurement).name
     q = _sh
+    if cell.robot is not None:
+        robot = Path(cell.robot).name
+        return "\n".join([
+            "#!/bin/sh",
+            f"# ucsio demo, cell {cell.name}: {cell.story}",
+            "# Every step of the demo by hand, in this folder. The laser points come from a",
+            f"# SpatialAnalyzer export, the robot's from the measurement program {robot};",
+            f"# the TCP of {cell.tool} is solved with the frame.",
+            "set -e",
+            'cd "$(dirname "$0")"',
+            "# 1. solve: the TCP with the frame (linear start, Gauss-Newton), leave-one-out exclusion",
+            f"ucsio solve --laser {q(meas)} --robot {q(robot)} --config {q(ctl)} --tcp solve "
+            "-o solution.json",
+            "# 2. diff: the simulated frame against the measured one (exit 1 over tolerance)",
+            f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json || true",
+            "# 3. patch: preview the base and the tool's TCP, then write a patched copy",
+            f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json",
+            f"ucsio patch {q(ctl)} --frame {q(cell.tool)} --measured solution.json",
+            f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json "
+            f"-o {q('patched/' + ctl)}",
+            f"ucsio patch {q('patched/' + ctl)} --frame {q(cell.tool)} --measured solution.json "
+            "--in-place",
+            "# 4. review: every frame of the two files",
+            f"ucsio diff {q(ctl)} {q('patched/' + ctl)}",
+            ""])
     return "\n".join([
         "#!/bin/sh",
         f"# ucsio demo, cell {cell.name}: {cell.story}",
@@ -135,8 +206,9 @@ def write_inputs(cell: Cell, root: Path, folder: Path, sol) -> None:
 
     from ..files import atomic_write, atomic_write_text
     from ..output import _clean
-    for rel in (cell.controller, cell.measurement):
-        atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
+    for rel in (cell.controller, cell.measurement, cell.robot):
+        if rel is not None:
+            atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
     atomic_write_text(folder / "solution.json",
                       json.dumps(_clean(sol.as_dict()), indent=2, ensure_ascii=False) + "\n")
     atomic_write_text(folder / "replay.sh", replay_script(cell))
