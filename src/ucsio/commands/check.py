@@ -37,11 +37,6 @@ def round_trip(cf) -> bool:
     return True
 
 
-def check_file(path: str, ignore: frozenset = frozenset()) -> dict:
-    from ..controller import load
-    return check_parsed(load(path, full=True), ignore)
-
-
 def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
     doc = cf.document
     return {"file": cf.path, "vendor": cf.vendor,
