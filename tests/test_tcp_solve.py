@@ -332,6 +332,12 @@ def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
     d = paired.as_dict()
     assert d["tcp_solved"]["solved"] is True and d["sources"]["robot"].endswith("robot.csv")
     assert given.solution.tcp == (12.5, -30.25, 180.0)
+    # a wrong TCP in a manifest: rejected, and the reason names the TCP that fits
+    (tmp_path / "wrong.toml").write_text(
+        '[[entry]]\nname = "wrong"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
+        'frame = "wFix"\ntcp = [15.0, -30.25, 185.0]\n')
+    (wrong,) = run_batch(read_manifest(tmp_path / "wrong.toml")).entries
+    assert not wrong.accepted and "--tcp solve" in wrong.reason
     assert half.error and "laser and robot" in half.error
     assert main(["solve", str(csv), "--tcp", "solve"]) == 0
 

@@ -491,6 +491,18 @@ def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float):
         return exc
 
 
+def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> None:
+    """A rejected fixed-TCP entry whose residuals a TCP change explains says
+    so in its reason (tcp_solve.diagnose), as ``solve`` does."""
+    from .tcp_solve import diagnose
+    found = diagnose(meas, sol, threshold=en.threshold, min_points=en.min_points,
+                     no_exclusion=en.no_exclusion, reach=en.reach, sigma_laser=sigma_laser,
+                     sigma_robot=sigma_robot)
+    if found:
+        sol.diagnosis = found
+        sol.reason = f"{sol.reason}; but {found['message']}"
+
+
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
     file, _, name = spec.rpartition(":")
     return tool_tcp(cache.controller(file).frame(name))
@@ -611,6 +623,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool
         r.solution = sol
+        if not sol.accepted and not r.entry.solve_tcp:
+            _diagnose(r.entry, read[k][1], sol, sigma_laser, sigma_robot)
         cf, frame = frames[k]
         try:
             r.measured = _measured_in_parent(cf, frame, sol.pose)
