@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import math
 import re
 import shutil
 
@@ -356,3 +357,24 @@ def test_api_diff_frame_with_points(tmp_path):
     cli, _ = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
                          solution(tmp_path, **KUKA_MEAS))
     assert d["points_moved"] == cli["points_moved"] and d["points"] == cli["points"]
+
+
+def test_known_geometry_translation_and_rotation(tmp_path):
+    """A pure shift moves every point by its length; a turn by t about the
+    base's z axis moves a point at distance r from that axis by 2 r sin(t/2)."""
+    x, y, z, a, b, c = BASE3
+    d, _ = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
+                       solution(tmp_path, x=x + 3, y=y + 4, z=z, a=a, b=b, c=c))
+    assert [p["moved"] for p in d["points"]] == pytest.approx([5.0] * 4, abs=1e-9)
+    # 0.5 deg about the base's own z: A, B, C of R_sim * Rz(0.5)
+    turned = Rotation.from_euler("ZYX", [a, b, c], degrees=True) * \
+        Rotation.from_euler("z", 0.5, degrees=True)
+    a2, b2, c2 = turned.as_euler("ZYX", degrees=True)
+    d, _ = points_json(KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
+                       solution(tmp_path, x=x, y=y, z=z, a=a2, b=b2, c=c2))
+    got = {p["name"]: p["moved"] for p in d["points"]}
+    for name, (px, py, _) in KUKA_POINTS.items():
+        r = math.hypot(px, py)
+        assert got[name] == pytest.approx(2 * r * math.sin(math.radians(0.25)), abs=1e-6)
+    # the issue's example: 0.5 deg moves a point 2 m out by about 17 mm
+    assert got["XP2"] == pytest.approx(17.45, abs=0.01)
