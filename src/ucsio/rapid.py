@@ -369,8 +369,13 @@ def _placeholder_in(v) -> _Placeholder | None:
 MAX_DEPTH = 100   # aggregates and signs a frame value may nest (a wobjdata needs 3)
 
 
-class _TooDeep(Exception):
+class _TooDeep(UcsioError):
+    """Raised inside the value converter, which knows no file: callers that
+    know it re-raise it with file:line:col; one that does not still gets a
+    clear one-line error (exit 2), never a traceback."""
+
     def __init__(self, pos: int):
+        super().__init__(f"value nested more than {MAX_DEPTH} levels deep")
         self.pos = pos
 
 
