@@ -215,7 +215,26 @@ def test_cli_tcp_solve(tmp_path, capsys):
     csv2 = csv_of(meas2, tmp_path / "m2.csv")
     assert main(["solve", str(csv2), "--tcp", "solve"]) == 1
     assert "turn the flange" in capsys.readouterr().out
-    assert main(["solve", str(csv), "--tcp", "solve", "--uncertainty", "100"]) == 2
+
+
+def test_monte_carlo_agrees_with_the_first_order_numbers(tmp_path, capsys):
+    """--uncertainty with --tcp solve: N noisy copies refitted by Gauss-Newton;
+    their spread matches the first-order covariance (the model is nearly
+    linear at this noise), and the TCP's std the solution's own tcp.std."""
+    meas, _, _ = cell(4, 30)
+    sol = tcp_solve.solve_joint(meas)
+    u = tcp_solve.uncertainty(meas, sol, 4000, seed=1)
+    assert u["samples"] == 4000 and u["sigma_source"] in ("stated", "residuals")
+    for k in "xyz":
+        assert u["std"][k] == pytest.approx(u["analytical_std"][k], rel=0.1)
+        assert u["tcp"]["std"][k] == pytest.approx(u["tcp"]["analytical_std"][k], rel=0.1)
+        lo, hi = u["tcp"]["ci95"][k]
+        assert lo < sol.tcp["xyz".index(k)] < hi
+    assert u["std"]["angle"] == pytest.approx(u["analytical_std"]["angle"], rel=0.15)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    assert main(["solve", str(csv), "--tcp", "solve", "--uncertainty", "200", "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["uncertainty"]["samples"] == 200 and set(got["uncertainty"]["tcp"]["std"]) == set("xyz")
 
 
 # ------------------------------------------------------------------ writing the TCP back

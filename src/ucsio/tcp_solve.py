@@ -97,10 +97,18 @@ def linear_tcp(laser: np.ndarray, Rf: np.ndarray, tf: np.ndarray, w: np.ndarray)
     return sol[-3:]
 
 
+def _per_set(a, S: int) -> np.ndarray:
+    """(n, 3) shared by every set, or (S, n, 3) one per set (Monte Carlo)."""
+    a = np.asarray(a, dtype=float)
+    return a if a.ndim == 3 else np.broadcast_to(a, (S,) + a.shape)
+
+
 def residuals(laser, Rf, tf, R, t, x) -> np.ndarray:
-    """e = (R_i x + t_i) - (R_Y l_i + t_Y): (S, n, 3) for (S,) parameter sets."""
-    return (np.einsum("nij,sj->sni", Rf, x) + tf[None]
-            - np.einsum("sij,nj->sni", R, laser) - t[:, None, :])
+    """e = (R_i x + t_i) - (R_Y l_i + t_Y): (S, n, 3) for (S,) parameter sets;
+    laser and tf (n, 3) shared, or (S, n, 3) per set."""
+    S = len(R)
+    return (np.einsum("nij,sj->sni", Rf, x) + _per_set(tf, S)
+            - np.einsum("sij,snj->sni", R, _per_set(laser, S)) - t[:, None, :])
 
 
 def gauss_newton(laser, Rf, tf, W, R, t, x):
@@ -111,8 +119,9 @@ def gauss_newton(laser, Rf, tf, W, R, t, x):
     J = np.empty((S, n, 3, 9))
     J[:, :, :, 3:6] = -np.eye(3)
     J[:, :, :, 6:] = Rf[None]
+    L = _per_set(laser, S)
     for _ in range(MAX_ITERATIONS):
-        Rl = np.einsum("sij,nj->sni", R, laser)
+        Rl = np.einsum("sij,snj->sni", R, L)
         e = residuals(laser, Rf, tf, R, t, x)
         J[:, :, :, :3] = _skew(Rl)                           # d e / d theta = [R l]x
         H = np.einsum("sn,snki,snkj->sij", W, J, J)
@@ -138,10 +147,11 @@ def first_solution(laser, Rf, tf, w):
 
 # ---------------------------------------------------------------- the gate
 
-def covariance(laser, Rf, R, w, sigma: float) -> np.ndarray:
-    """First-order covariance (9, 9) of (dt at the centroid, dθ, dx): the
-    frame's first six in precision.py's coordinates."""
-    c = (w[:, None] * laser).sum(axis=0) / w.sum()
+def covariance(laser, Rf, R, w, sigma: float, centred: bool = True) -> np.ndarray:
+    """First-order covariance (9, 9) of (dt, dθ, dx): dt at the centroid (the
+    frame's first six in precision.py's coordinates), or with ``centred``
+    False at the frame's origin (the fitted translation's own doubt)."""
+    c = (w[:, None] * laser).sum(axis=0) / w.sum() if centred else np.zeros(3)
     p = (laser - c) @ R.T
     J = np.zeros((len(laser), 3, 9))
     J[:, :, :3] = np.eye(3)
@@ -310,6 +320,75 @@ def _leave_one_out(laser, Rf, tf, weights, used, R, t, x) -> np.ndarray:
     e = residuals(laser, Rf, tf, Rs, ts, xs)                 # (S, n, 3)
     out[idx] = np.linalg.norm(e[np.arange(S), idx], axis=1)
     return out
+
+
+# ---------------------------------------------------------------- uncertainty
+
+def uncertainty(measurement, sol, n_samples: int = 10000,
+                sigma_laser: float = defaults.SIGMA_LASER,
+                sigma_robot: float = defaults.SIGMA_ROBOT, seed: int = 0) -> dict[str, Any]:
+    """``solve --uncertainty N`` for the joint model: N copies of the used
+    points with Gaussian noise per axis (``sigma_laser`` on the laser points,
+    ``sigma_robot`` on the flange positions), each refitted by Gauss-Newton
+    from the solution, in one batch. The keys of ``solve.uncertainty`` (x, y,
+    z, angle of the frame; the noise scaled up to the residuals' where they
+    show more, √(Σ|e|² / (3n − 9))), plus ``tcp``: ``std`` and ``ci95`` of
+    the solved TCP. ``analytical_std``: the first-order numbers alongside."""
+    from .solve import check_sigmas
+
+    check_sigmas(sigma_laser, sigma_robot)
+    if n_samples < 2:
+        raise UcsioError("--uncertainty needs at least 2 samples")
+    used = np.array([p.used for p in sol.points])
+    L = np.asarray(measurement.laser, dtype=float)[used]
+    F = np.asarray(measurement.flange, dtype=float)[used]
+    w = np.asarray(measurement.weights, dtype=float)[used]
+    Rf, tf = F[:, :3, :3], F[:, :3, 3]
+    n = len(L)
+    r = np.array([p.residual for p in sol.points])[used]
+    stated = math.hypot(sigma_laser, sigma_robot)
+    residual = math.sqrt(float(np.sum(r ** 2)) / max(3 * n - 9, 1))
+    source = "stated"
+    if residual > stated:
+        source = "residuals"
+        if stated > 0:
+            sigma_laser, sigma_robot = sigma_laser * residual / stated, sigma_robot * residual / stated
+        else:
+            sigma_robot = residual
+    R0 = np.array(sol.pose.matrix, dtype=float)
+    t0 = np.array(sol.pose.t, dtype=float)
+    x0 = np.array(sol.tcp, dtype=float)
+    rng = np.random.default_rng(seed)
+    noisy_l = L + rng.normal(0.0, sigma_laser, size=(n_samples, n, 3))
+    noisy_t = tf + rng.normal(0.0, sigma_robot, size=(n_samples, n, 3))
+    S = n_samples
+    with np.errstate(all="ignore"):
+        R, t, x = gauss_newton(noisy_l, Rf, noisy_t, np.broadcast_to(w, (S, n)),
+                               np.repeat(R0[None], S, 0), np.repeat(t0[None], S, 0),
+                               np.repeat(x0[None], S, 0))
+    angle = horn.rotation_angle_deg(R0[None], R)
+
+    def stats(v):
+        lo, hi = np.percentile(v, [2.5, 97.5], axis=0)
+        return ({k: float(np.std(v[:, j], ddof=1)) for j, k in enumerate("xyz")},
+                {k: [float(lo[j]), float(hi[j])] for j, k in enumerate("xyz")})
+
+    std, ci95 = stats(t)
+    std["angle"] = float(np.sqrt(np.mean(angle ** 2)))
+    ci95["angle"] = [0.0, float(np.percentile(angle, 95.0))]
+    tcp_std, tcp_ci = stats(x)
+    cov = covariance(L, Rf, R0, w, 1.0, centred=False) * (sigma_laser ** 2 + sigma_robot ** 2)
+    finite = bool(np.all(np.isfinite(cov)))
+    d = np.sqrt(np.clip(np.diag(cov), 0.0, None)) if finite else np.full(9, np.inf)
+    analytical = {"x": float(d[0]), "y": float(d[1]), "z": float(d[2]),
+                  "angle": float(np.degrees(np.sqrt(max(np.trace(cov[3:6, 3:6]), 0.0))))
+                  if finite else math.inf}
+    return {"samples": int(n_samples), "sigma_laser": float(sigma_laser),
+            "sigma_robot": float(sigma_robot), "sigma": float(math.hypot(sigma_laser, sigma_robot)),
+            "sigma_source": source, "seed": int(seed), "std": std, "ci95": ci95,
+            "tcp": {"std": tcp_std, "ci95": tcp_ci,
+                    "analytical_std": {k: float(v) for k, v in zip("xyz", d[6:])}},
+            "analytical_std": analytical}
 
 
 # ---------------------------------------------------------------- diagnosis

@@ -140,9 +140,6 @@ def run(args) -> int:
         if not os.path.isdir(folder):
             raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
     solve_tcp = args.tcp is not None and args.tcp.strip().casefold() == "solve"
-    if solve_tcp and args.uncertainty:
-        raise UcsioError("--uncertainty with --tcp solve: not available; the solution's "
-                         "tcp.std and precision give the first-order doubt")
     if args.tool:
         tcp = tool_tcp(args.tool)
     elif solve_tcp:
@@ -166,7 +163,11 @@ def run(args) -> int:
             sol.diagnosis = diagnose(meas, sol, **settings)
             if sol.diagnosis:
                 sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
-    if args.uncertainty:
+    if args.uncertainty and solve_tcp:
+        from ..tcp_solve import uncertainty
+        sol.uncertainty = uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
+                                      args.sigma_robot, args.seed)
+    elif args.uncertainty:
         solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
                                     args.sigma_robot, args.seed)
     result = sol.as_dict()
