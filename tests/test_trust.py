@@ -317,3 +317,28 @@ def test_huge_tcp_is_refused(capsys):
     rc = main(["solve", str(FIXTURES / "measurements" / "kuka_base3.csv"), "--tcp", "1e200,0,0"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "--tcp" in err
+
+
+# ------------------------------------------------------------ the last resort
+
+def test_an_unexpected_exception_is_one_line_not_a_traceback(monkeypatch, capsys):
+    """A bug must still end in one line and exit 2, JSON with --json; with
+    UCSIO_DEBUG set the traceback is there for whoever debugs it."""
+    from ucsio.commands import frames as frames_cmd
+
+    def boom(args):
+        raise ZeroDivisionError("simulated bug")
+
+    monkeypatch.setattr(frames_cmd, "run", boom)
+    assert main(["frames", "x.mod"]) == 2
+    out, err = capsys.readouterr()
+    assert err.count("\n") == 1 and "internal error" in err and "ZeroDivisionError" in err
+    assert main(["frames", "x.mod", "--json"]) == 2
+    assert "internal error" in json.loads(capsys.readouterr().out)["error"]["message"]
+    monkeypatch.setattr(frames_cmd, "run", lambda args: (_ for _ in ()).throw(RecursionError()))
+    assert main(["frames", "x.mod"]) == 2
+    assert "nested too deeply" in capsys.readouterr().err
+    monkeypatch.setenv("UCSIO_DEBUG", "1")
+    monkeypatch.setattr(frames_cmd, "run", boom)
+    with pytest.raises(ZeroDivisionError):
+        main(["frames", "x.mod"])

@@ -114,6 +114,20 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except RecursionError:      # a guard was missed somewhere: still one line, not a traceback
+        report_error(UcsioError("input nested too deeply to read"), want_json)
+        return 2
+    except MemoryError:
+        report_error(UcsioError("out of memory: the input is too large for this machine"),
+                     want_json)
+        return 2
+    except Exception as exc:    # a bug: one line saying so; UCSIO_DEBUG=1 shows the traceback
+        if os.environ.get("UCSIO_DEBUG"):
+            raise
+        report_error(UcsioError(f"internal error (a bug in ucsio: please report it with the "
+                                f"command and its input; UCSIO_DEBUG=1 shows where): "
+                                f"{type(exc).__name__}: {exc}"), want_json)
+        return 2
 
 
 def report_error(exc: UcsioError, want_json: bool) -> None:
