@@ -56,3 +56,19 @@ def did_you_mean(word: str, names) -> str:
     folded = {n.casefold(): n for n in names}
     close = difflib.get_close_matches(str(word).casefold(), list(folded), n=1, cutoff=0.6)
     return f"; did you mean {folded[close[0]]!r}?" if close else ""
+
+
+#: How deep a value may nest (aggregates, signs) before a reader refuses it:
+#: a wobjdata needs 3, a KUKA LOAD_DATA 2; Python's recursion would give out
+#: around 1000, with a traceback instead of a line.
+MAX_NESTING = 100
+
+
+class TooDeep(UcsioError):
+    """Raised inside a value converter, which knows no file: callers that
+    know it re-raise it with file:line:col; one that does not still gets a
+    clear one-line error (exit 2), never a traceback."""
+
+    def __init__(self, pos: int):
+        super().__init__(f"value nested more than {MAX_NESTING} levels deep")
+        self.pos = pos

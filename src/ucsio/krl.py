@@ -45,7 +45,7 @@ from typing import Any
 
 from .controller import ControllerFile
 from .document import Document, Span
-from .errors import UcsioError
+from .errors import MAX_NESTING, TooDeep, UcsioError
 from .frames import Frame, Number, Pose
 from .values import Value
 
@@ -435,26 +435,13 @@ class _Name:
         self.value, self.start_pos = value, start_pos
 
 
-MAX_DEPTH = 100   # structures a value may nest (LOAD_DATA needs 2)
-
-
-class _TooDeep(UcsioError):
-    """Raised inside the value converter, which knows no file: callers that
-    know it re-raise it with file:line:col; one that does not still gets a
-    clear one-line error (exit 2), never a traceback."""
-
-    def __init__(self, pos: int):
-        super().__init__(f"value nested more than {MAX_DEPTH} levels deep")
-        self.pos = pos
-
-
 def _value(node, delta: int = 0, depth: int = 0) -> _Val:
     """The value ``node`` as a _Val; positions moved by ``delta`` (a value
     parsed once for several lines with the same text, see _shared_values).
-    Deeper than MAX_DEPTH raises _TooDeep (a clear error, not Python's
+    Deeper than MAX_NESTING raises TooDeep (a clear error, not Python's
     RecursionError)."""
-    if depth > MAX_DEPTH:
-        raise _TooDeep((node.start_pos if isinstance(node, str) else node.children[0].start_pos)
+    if depth > MAX_NESTING:
+        raise TooDeep((node.start_pos if isinstance(node, str) else node.children[0].start_pos)
                        + delta)
     if isinstance(node, str):           # a lark Token (a str); else a struct Tree
         t = node.type
@@ -596,8 +583,8 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=VENDOR)
     try:
         _Interpreter(doc, cf).run(stmts)
-    except _TooDeep as exc:
-        raise doc.error(f"value nested more than {MAX_DEPTH} levels deep", exc.pos) from None
+    except TooDeep as exc:
+        raise doc.error(f"value nested more than {MAX_NESTING} levels deep", exc.pos) from None
     cf.extra["defdat"] = _defdat(tree)
     return cf
 

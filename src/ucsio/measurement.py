@@ -37,6 +37,7 @@ import numpy as np
 from .defaults import MAX_MAGNITUDE
 from .errors import UcsioError
 from .files import read_bytes
+from .readers.text import decode
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),
@@ -181,15 +182,6 @@ def _split(line: str, sep: str) -> list[tuple[str, int]]:
             return fields
 
 
-def _decode(raw: bytes, path: str) -> str:
-    if raw.startswith(b"\xef\xbb\xbf"):
-        raw = raw[3:]
-    try:
-        return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        return raw.decode("cp1252", errors="replace")
-
-
 def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
                      what: str = "measurement file") -> Measurement:
     """Read a measurement CSV; UcsioError (exit 2) on anything wrong.
@@ -198,7 +190,7 @@ def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
     columns are then not needed (and its array is None)."""
     path = os.fspath(path)
     raw = read_bytes(path, what)
-    return parse_measurement(_decode(raw, path), path, sides)
+    return parse_measurement(decode(raw), path, sides)
 
 
 def parse_measurement(text: str, path: str = "<measurement>",

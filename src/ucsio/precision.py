@@ -37,7 +37,7 @@ import numpy as np
 Z95 = 1.6448536269514722      # one-sided standard normal quantile at 0.95
 
 
-def _skew(v: np.ndarray) -> np.ndarray:
+def skew(v: np.ndarray) -> np.ndarray:
     """(..., 3) -> (..., 3, 3) cross-product matrices [v]x."""
     x, y, z = np.moveaxis(v, -1, 0)
     o = np.zeros_like(x)
@@ -67,7 +67,7 @@ def at_reach95(cov: np.ndarray, reach) -> np.ndarray:
     r = np.asarray(reach, dtype=float).reshape(-1)[:, None, None]
     worst = np.zeros(len(cov))
     for sgn in (1.0, -1.0):
-        U = _skew(sgn * u)
+        U = skew(sgn * u)
         cp = ctt - r * (ctq @ np.swapaxes(U, 1, 2)) - r * (U @ np.swapaxes(ctq, 1, 2)) \
             + r * r * (U @ cqq @ np.swapaxes(U, 1, 2))
         worst = np.maximum(worst, quantile95_norm(cp))
@@ -92,7 +92,7 @@ def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str,
     p = np.einsum("bij,bnj->bni", R, L - c[:, None, :])          # centred, robot axes
 
     # J_i^T J_i = [[I, -[p]x], [[p]x, |p|² I - p p^T]], summed with w and w².
-    P = _skew(p)                                                 # (B, n, 3, 3)
+    P = skew(p)                                                 # (B, n, 3, 3)
     inner = (np.einsum("bni,bni->bn", p, p)[..., None, None] * np.eye(3)
              - np.einsum("bni,bnj->bnij", p, p))
 

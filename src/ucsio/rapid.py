@@ -20,7 +20,7 @@ import re
 
 from .controller import ControllerFile
 from .document import Document, Span
-from .errors import UcsioError
+from .errors import MAX_NESTING, TooDeep, UcsioError
 from .frames import Frame, Number, Pose
 from .grammar import grammar_dir
 from .values import Value
@@ -329,8 +329,8 @@ class Decl(Value):
             try:
                 dims = None if dims_node is None else [_value(d) for d in dims_node.children]
                 value = None if value_node is None else _value(value_node)
-            except _TooDeep as exc:
-                raise self._doc.error(f"{self.name}: value nested more than {MAX_DEPTH} levels "
+            except TooDeep as exc:
+                raise self._doc.error(f"{self.name}: value nested more than {MAX_NESTING} levels "
                                       "deep", exc.pos) from None
             self._converted = (dims, value)
         return self._converted
@@ -366,26 +366,13 @@ def _placeholder_in(v) -> _Placeholder | None:
     return None
 
 
-MAX_DEPTH = 100   # aggregates and signs a frame value may nest (a wobjdata needs 3)
-
-
-class _TooDeep(UcsioError):
-    """Raised inside the value converter, which knows no file: callers that
-    know it re-raise it with file:line:col; one that does not still gets a
-    clear one-line error (exit 2), never a traceback."""
-
-    def __init__(self, pos: int):
-        super().__init__(f"value nested more than {MAX_DEPTH} levels deep")
-        self.pos = pos
-
-
 def _value(node, depth: int = 0):
     """Lark subtree -> Number | bool | str | list | _Expr. Deeper than
-    MAX_DEPTH raises _TooDeep (a clear error, not Python's RecursionError)."""
+    MAX_NESTING raises TooDeep (a clear error, not Python's RecursionError)."""
     from lark import Token, Tree
 
-    if depth > MAX_DEPTH:
-        raise _TooDeep(_extent(node)[0])
+    if depth > MAX_NESTING:
+        raise TooDeep(_extent(node)[0])
     if isinstance(node, Token):
         return _Expr(node.start_pos, node.end_pos)
     kind = node.data

@@ -43,6 +43,7 @@ import numpy as np
 from . import defaults, horn
 from .errors import UcsioError
 from .frames import Pose
+from .precision import skew
 
 MAX_ITERATIONS = 50
 STEP_MM = 1e-9              # a Gauss-Newton step this small (mm, rad) has converged
@@ -55,13 +56,6 @@ FLAT_RATIO = 0.05
 
 
 # ---------------------------------------------------------------- the fit
-
-def _skew(v: np.ndarray) -> np.ndarray:
-    x, y, z = np.moveaxis(v, -1, 0)
-    o = np.zeros_like(x)
-    return np.stack([np.stack([o, -z, y], -1), np.stack([z, o, -x], -1),
-                     np.stack([-y, x, o], -1)], axis=-2)
-
 
 def _exp(theta: np.ndarray) -> np.ndarray:
     """(S, 3) rotation vectors -> (S, 3, 3) matrices, through the unit
@@ -123,7 +117,7 @@ def gauss_newton(laser, Rf, tf, W, R, t, x):
     for _ in range(MAX_ITERATIONS):
         Rl = np.einsum("sij,snj->sni", R, L)
         e = residuals(laser, Rf, tf, R, t, x)
-        J[:, :, :, :3] = _skew(Rl)                           # d e / d theta = [R l]x
+        J[:, :, :, :3] = skew(Rl)                           # d e / d theta = [R l]x
         H = np.einsum("sn,snki,snkj->sij", W, J, J)
         g = np.einsum("sn,snki,snk->si", W, J, e)
         step = -np.einsum("sij,sj->si", np.linalg.pinv(H, hermitian=True), g)
@@ -155,7 +149,7 @@ def covariance(laser, Rf, R, w, sigma: float, centred: bool = True) -> np.ndarra
     p = (laser - c) @ R.T
     J = np.zeros((len(laser), 3, 9))
     J[:, :, :3] = np.eye(3)
-    J[:, :, 3:6] = -_skew(p)
+    J[:, :, 3:6] = -skew(p)
     J[:, :, 6:] = -Rf
     JtJ = np.einsum("nki,nkj->nij", J, J)
     H = np.einsum("n,nij->ij", w, JtJ)
