@@ -107,17 +107,13 @@ _MACH_DEF_INDEX = re.compile(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r
                              re.I)
 
 
-def _element_re(names, machine: bool) -> re.Pattern:
-    """Element lines ``NAME[...]=...``/``NAME=...`` of the tables ``names``;
-    with ``machine``, also of MACHINE_FRAME_DAT (group 2 set) and MACHINE_DEF
-    (group 3 set; group 4 "[" and group 5 the first index, if so written)."""
-    alt = "|".join(sorted((re.escape(n) for n in names), key=len, reverse=True))
-    if machine:
-        alt = "(MACHINE_FRAME_DAT)|(MACHINE_DEF)|" + alt
-    else:
-        alt = "()()" + alt          # the same group numbers, never set
-    return re.compile(r"\n(" + _WS + r"*(?:" + alt + r")" + _WS + r"*([\[=])(?:" + _WS +
-                      r"*([0-9]+))?[^\n]*)", re.I)
+# An element line ``NAME[...]=...`` / ``NAME=...`` of any table: group 2 the
+# name, group 3 "[" or "=", group 4 the first index if so written. Which
+# names matter is decided in Python with a set: an alternation of every
+# declared name (thousands in a program .dat) made each line cost as many
+# tries as there are names, quadratic in the file.
+_ELEMENT_LINE = re.compile(r"\n(" + _WS + r"*([A-Za-z_$][\w$]*)" + _WS + r"*([\[=])(?:" + _WS +
+                           r"*([0-9]+))?[^\n]*)")
 
 
 def outline(text: str) -> list[tuple[int, int]]:
@@ -140,13 +136,14 @@ def outline(text: str) -> list[tuple[int, int]]:
         names.update(MACHINE_TABLES)
     mframes = []
     mdefs = []
-    for m in _element_re(names, machine).finditer(nl_text):
+    for m in _ELEMENT_LINE.finditer(nl_text):
+        name = m.group(2).upper()
         span = (m.start(1) - 1, m.end(1) - 1)
-        if m.group(2) is not None:
+        if machine and name == "MACHINE_FRAME_DAT":
             mframes.append((span, m.group(1)))
-        elif m.group(3) is not None:
-            mdefs.append((span, m.group(4) == "[" and m.group(5)))
-        else:
+        elif machine and name == "MACHINE_DEF":
+            mdefs.append((span, m.group(3) == "[" and m.group(4)))
+        elif name in names:
             spans.append(span)
     if mframes:
         spans += _machine_lines(mframes, mdefs)
