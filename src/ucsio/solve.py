@@ -273,12 +273,14 @@ def _unusable(d: Dataset) -> UcsioError | None:
     a micrometre; weights over the same bound. Within these, Horn's sums
     cannot overflow."""
     limit = 4 * defaults.MAX_MAGNITUDE           # a flange position through a TCP: |p| + |tcp|
+    # one reduction per array (a NaN makes max/min NaN, and every comparison
+    # with NaN is False, so "not <=" also catches it): this runs per dataset
     for what, arr in (("laser", d.laser), ("robot", d.robot)):
-        if not np.all(np.isfinite(arr)) or (arr.size and np.abs(arr).max() > limit):
+        if arr.size and not np.abs(arr).max() <= limit:
             return UcsioError(f"{what} coordinates not finite or beyond {limit:.0e} mm: "
                               "double precision cannot fit them", file=d.path)
     w = d.weights
-    if not np.all(np.isfinite(w)) or np.any(w <= 0) or np.any(w > defaults.MAX_MAGNITUDE):
+    if w.size and not (w.min() > 0 and w.max() <= defaults.MAX_MAGNITUDE):
         return UcsioError(f"weights must be positive and at most {defaults.MAX_MAGNITUDE:.0e}",
                           file=d.path)
     return None
@@ -309,13 +311,16 @@ def _precision(data: Sequence[Dataset], final: dict[int, tuple],
     n_used = (W > 0).sum(axis=1)
     p = prec.predict(L, W, Rs, e2, n_used, [data[i].sigma_stated for i in order],
                      [data[i].reach for i in order])
+    # one .tolist() per array, not a float() per number (10,000 datasets in a batch)
+    sigma, angle_std = p["sigma"].tolist(), p["angle_std"].tolist()
+    at_reach, at_centroid, spread = (p["at_reach"].tolist(), p["at_centroid"].tolist(),
+                                     p["spread"].tolist())
     out = {}
     for a, i in enumerate(order):
         d = data[i]
-        item = {"sigma": float(p["sigma"][a]), "angle_std": float(p["angle_std"][a]),
-                "reach": float(d.reach), "at_reach": float(p["at_reach"][a]),
-                "at_centroid": float(p["at_centroid"][a]),
-                "spread": [float(v) for v in p["spread"][a]]}
+        item = {"sigma": sigma[a], "angle_std": angle_std[a],
+                "reach": float(d.reach), "at_reach": at_reach[a],
+                "at_centroid": at_centroid[a], "spread": spread[a]}
         if not item["at_reach"] <= d.threshold:
             item["reason"] = prec.reason(item["at_reach"], item["at_centroid"], d.reach,
                                          d.threshold, item["sigma"], item["angle_std"],
@@ -409,28 +414,30 @@ def _solve_many(data: Sequence[Dataset]) -> list:
     for i, (R, t, status, resid, loo) in final.items():
         d = data[i]
         u = used[i]
-        pred = d.laser @ R.T + t
-        dvec = d.robot - pred
-        loo_all = np.where(u, loo, resid)
+        dvec = d.robot - (d.laser @ R.T + t)
         r_used = resid[u]
-        n_used = int(u.sum())
+        n_used = len(r_used)
+        r_max = float(r_used.max())
         pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
-        accepted, reason = acceptance(n_used, float(np.max(r_used)), threshold=d.threshold,
+        accepted, reason = acceptance(n_used, r_max, threshold=d.threshold,
                                       min_points=d.min_points, no_exclusion=d.no_exclusion,
                                       n_auto=excluded_by[i].count("auto"))
         precision = gate[i]
         if accepted and not precision["at_reach"] <= d.threshold:
             accepted, reason = False, precision.pop("reason")
         precision.pop("reason", None)
-        points = [PointResult(name=d.names[k], residual=float(resid[k]),
-                              loo_residual=float(loo_all[k]), used=bool(u[k]),
-                              dx=float(dvec[k, 0]), dy=float(dvec[k, 1]), dz=float(dvec[k, 2]),
-                              excluded_by=excluded_by[i][k], weight=float(d.weights[k]),
-                              line=None if d.lines is None else d.lines[k])
-                  for k in range(len(d.names))]
+        # plain floats from one .tolist() per array: the per-number float()
+        # calls were a large part of batch's bookkeeping at 10,000 datasets
+        lines = d.lines if d.lines is not None else [None] * len(d.names)
+        points = [PointResult(name=name, residual=r, loo_residual=lo, used=us,
+                              dx=dv[0], dy=dv[1], dz=dv[2], excluded_by=ex, weight=w, line=ln)
+                  for name, r, lo, us, dv, ex, w, ln in zip(
+                      d.names, resid.tolist(), np.where(u, loo, resid).tolist(), u.tolist(),
+                      dvec.tolist(), excluded_by[i], np.asarray(d.weights, float).tolist(),
+                      lines)]
         results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
                               rms=float(np.sqrt(np.mean(r_used ** 2))),
-                              mean=float(np.mean(r_used)), max=float(np.max(r_used)),
+                              mean=float(np.mean(r_used)), max=r_max,
                               accepted=accepted, reason=reason, threshold=float(d.threshold),
                               min_points=int(d.min_points), source=d.path,
                               no_exclusion=bool(d.no_exclusion), precision=precision)
