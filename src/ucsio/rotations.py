@@ -35,11 +35,14 @@ def wrap180(angle: float) -> float:
 
 
 def quat_normalize(q: Quat) -> Quat:
-    n = math.sqrt(sum(c * c for c in q))
+    # spelled out, not sum() over a generator: called for every pose a
+    # reader builds and every delta (tens of thousands in a batch); the same
+    # additions in the same order, so the same bits
+    w, x, y, z = q
+    n = math.sqrt(w * w + x * x + y * y + z * z)
     if n == 0.0 or not math.isfinite(n):
         raise ValueError("quaternion has zero or non-finite norm")
-    w, x, y, z = (c / n for c in q)
-    return (w, x, y, z)
+    return (w / n, x / n, y / n, z / n)
 
 
 def quat_canonical(q: Quat) -> Quat:
