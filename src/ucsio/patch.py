@@ -378,9 +378,13 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
         from .controller import load
     found = []
     key = frame.name.casefold()
+    try:
+        here_resolved = here.resolve()
+    except OSError:
+        return []
     for p in siblings:
         try:
-            if p.resolve() == here.resolve():
+            if p.resolve() == here_resolved:
                 continue
         except OSError:
             continue
@@ -419,8 +423,13 @@ def _may_declare(path: Path, name: str) -> bool:
     data = re.match(r"[A-Za-z_]\w*", name)   # the data's own name: wobj1 of wobj1.oframe, tools{2}
     if data is None:
         return True
-    word = rb"(?<![A-Za-z0-9_])" + data.group().encode("ascii") + rb"(?![A-Za-z0-9_])"
-    return re.search(word, raw, re.IGNORECASE) is not None
+    # lower-cased bytes and a plain substring test first: an IGNORECASE regex
+    # over every sibling was most of a patch beside 34 modules (issue 13)
+    needle, low = data.group().lower().encode("ascii"), raw.lower()
+    if needle not in low:
+        return False
+    word = rb"(?<![a-z0-9_])" + re.escape(needle) + rb"(?![a-z0-9_])"
+    return re.search(word, low) is not None
 
 
 def poses_equal(a: Pose | None, b: Pose | None) -> bool:
