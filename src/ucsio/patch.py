@@ -37,6 +37,7 @@ import difflib
 import itertools
 import math
 import os
+import re
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -494,9 +495,27 @@ class PatchResult:
 def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: int = 1) -> str:
     new_text = Document(new_bytes, doc.path).text
     label = (label or doc.path).replace(os.sep, "/").lstrip("/")
-    out = difflib.unified_diff(text_lines(doc.text), text_lines(new_text), f"a/{label}", f"b/{label}",
+    a, b = text_lines(doc.text), text_lines(new_text)
+    # a patch changes a few lines: difflib gets them and n lines of context,
+    # not the whole file (its matching was a third of a patch on a 2.6 MB
+    # module); the hunk headers are moved back to the file's line numbers
+    lo, limit = 0, min(len(a), len(b))
+    while lo < limit and a[lo] == b[lo]:
+        lo += 1
+    hi = 0
+    while hi < limit - lo and a[-1 - hi] == b[-1 - hi]:
+        hi += 1
+    lo, hi = max(0, lo - n), max(0, hi - n)
+    out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], f"a/{label}", f"b/{label}",
                                n=n, lineterm="")
+    if lo:
+        out = (_HUNK.sub(lambda m: f"@@ -{int(m[1]) + lo}{m[2] or ''} "
+                                   f"+{int(m[3]) + lo}{m[4] or ''} @@", line, count=1)
+               if line.startswith("@@") else line for line in out)
     return "\n".join(out) + ("\n" if new_text != doc.text else "")
+
+
+_HUNK = re.compile(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")
 
 
 def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,
