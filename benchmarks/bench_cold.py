@@ -22,17 +22,15 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
-from coldstart import ENV  # noqa: E402
+from coldstart import ENV, alternate  # noqa: E402
 from make_big_module import big_module  # noqa: E402
 
 CORPUS = ROOT.parent / "shared" / "corpus"
@@ -56,24 +54,6 @@ def first_frame(path: Path) -> str:
     frames = json.loads(out)["frames"]
     return next(f["name"] for f in frames
                 if f["type"] in ("wobjdata", "BASE_DATA") and f["x"] is not None)
-
-
-def run_cold(cmd: list[str]) -> float:
-    t = time.perf_counter()
-    code = subprocess.run(cmd, stdout=subprocess.DEVNULL, env=ENV).returncode
-    if code not in (0, 1):                  # 1: a frame over tolerance, a gate; fine here
-        raise SystemExit(f"{' '.join(cmd)}: exit {code}")
-    return time.perf_counter() - t
-
-
-def alternate(a: list[str], b: list[str], rounds: int) -> tuple[float, float]:
-    """Medians over alternating runs, after one warm-up of each (coldstart.py)."""
-    run_cold(a), run_cold(b)
-    ta, tb = [], []
-    for _ in range(rounds):
-        ta.append(run_cold(a))
-        tb.append(run_cold(b))
-    return statistics.median(ta), statistics.median(tb)
 
 
 def main(argv=None) -> int:
