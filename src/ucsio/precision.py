@@ -74,6 +74,39 @@ def at_reach95(cov: np.ndarray, reach) -> np.ndarray:
     return worst
 
 
+def residual_sigma(sum_e2, n_used, params: int = 6):
+    """Per-axis noise the residuals show: √(Σ|e_i|² / (3n − params)) (3n
+    numbers, ``params`` fitted: 6 for a frame, 9 for a frame and a TCP).
+    Scalars or arrays alike."""
+    dof = np.maximum(3.0 * np.asarray(n_used, dtype=float) - params, 1.0)
+    return np.sqrt(np.asarray(sum_e2, dtype=float) / dof)
+
+
+def fit_covariance(p, w) -> np.ndarray:
+    """H⁻¹ G H⁻¹ (B, 6, 6) for (dt, dθ) of weighted fits whose points, in
+    robot axes about the origin the translation is taken at, are p (B, n, 3)
+    with weights w (B, n): J_i = [I3, -[p_i]x], H = Σ w_i J_i^T J_i, G = Σ w_i²
+    J_i^T J_i. Times σ² it is the fit's first-order covariance."""
+    p = np.asarray(p, dtype=float)
+    w = np.asarray(w, dtype=float)
+    # J_i^T J_i = [[I, -[p]x], [[p]x, |p|² I - p p^T]], summed with w and w².
+    P = skew(p)                                                 # (B, n, 3, 3)
+    inner = (np.einsum("bni,bni->bn", p, p)[..., None, None] * np.eye(3)
+             - np.einsum("bni,bnj->bnij", p, p))
+
+    def moment(v):
+        M = np.zeros(p.shape[:1] + (6, 6))
+        M[:, :3, :3] = v.sum(axis=1)[:, None, None] * np.eye(3)
+        M[:, :3, 3:] = -np.einsum("bn,bnij->bij", v, P)
+        M[:, 3:, :3] = np.einsum("bn,bnij->bij", v, P)
+        M[:, 3:, 3:] = np.einsum("bn,bnij->bij", v, inner)
+        return M
+
+    with np.errstate(all="ignore"):
+        Hinv = np.linalg.pinv(moment(w), hermitian=True)
+        return Hinv @ moment(w * w) @ Hinv
+
+
 def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str, np.ndarray]:
     """The gate's numbers for a batch of fits.
 
@@ -90,29 +123,8 @@ def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str,
     wsum = w.sum(axis=1)
     c = np.einsum("bn,bni->bi", w, L) / wsum[:, None]
     p = np.einsum("bij,bnj->bni", R, L - c[:, None, :])          # centred, robot axes
-
-    # J_i^T J_i = [[I, -[p]x], [[p]x, |p|² I - p p^T]], summed with w and w².
-    P = skew(p)                                                 # (B, n, 3, 3)
-    inner = (np.einsum("bni,bni->bn", p, p)[..., None, None] * np.eye(3)
-             - np.einsum("bni,bnj->bnij", p, p))
-
-    def moment(v):
-        M = np.zeros(L.shape[:1] + (6, 6))
-        M[:, :3, :3] = v.sum(axis=1)[:, None, None] * np.eye(3)
-        M[:, :3, 3:] = -np.einsum("bn,bnij->bij", v, P)
-        M[:, 3:, :3] = np.einsum("bn,bnij->bij", v, P)
-        M[:, 3:, 3:] = np.einsum("bn,bnij->bij", v, inner)
-        return M
-
-    H = moment(w)
-    G = moment(w * w)
-    n = np.asarray(n_used, dtype=float)
-    dof = np.maximum(3.0 * n - 6.0, 1.0)
-    sigma = np.maximum(np.asarray(sigma_stated, dtype=float),
-                       np.sqrt(np.asarray(sum_e2, dtype=float) / dof))
-    with np.errstate(all="ignore"):
-        Hinv = np.linalg.pinv(H, hermitian=True)
-        cov = (sigma ** 2)[:, None, None] * (Hinv @ G @ Hinv)
+    sigma = np.maximum(np.asarray(sigma_stated, dtype=float), residual_sigma(sum_e2, n_used))
+    cov = (sigma ** 2)[:, None, None] * fit_covariance(p, w)
     ctt, cqq = cov[:, :3, :3], cov[:, 3:, 3:]
     worst = at_reach95(cov, reach)
     C = np.einsum("bn,bni,bnj->bij", w, p, p) / wsum[:, None, None]

@@ -561,20 +561,11 @@ def analytical_std(laser, fit: horn.HornFit, weights, sigma_laser: float,
     isotropic with variance s^2 = sigma_robot^2 + sigma_laser^2 (the laser
     noise rotated by R), so cov = s^2 H^-1 (sum w_i^2 J_i^T J_i) H^-1 with
     H = sum w_i J_i^T J_i. The angle is sqrt(trace cov_θ) in degrees."""
+    from .precision import fit_covariance      # the gate's covariance, about the UCS origin
+
     p = np.asarray(laser, dtype=float) @ fit.R.T            # R l_i
     w = np.asarray(weights, dtype=float)
-    J = np.zeros((len(p), 3, 6))
-    J[:, :, :3] = np.eye(3)
-    px, py, pz = p.T
-    zero = np.zeros_like(px)
-    skew = np.stack([np.stack([zero, -pz, py], -1), np.stack([pz, zero, -px], -1),
-                     np.stack([-py, px, zero], -1)], axis=1)   # [p]x
-    J[:, :, 3:] = -skew
-    JtJ = np.einsum("nki,nkj->nij", J, J)
-    H = np.einsum("n,nij->ij", w, JtJ)
-    G = np.einsum("n,nij->ij", w * w, JtJ)
-    Hinv = np.linalg.inv(H)
-    cov = (sigma_robot ** 2 + sigma_laser ** 2) * Hinv @ G @ Hinv
+    cov = (sigma_robot ** 2 + sigma_laser ** 2) * fit_covariance(p[None], w[None])[0]
     d = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     return {"x": float(d[0]), "y": float(d[1]), "z": float(d[2]),
             "angle": float(np.degrees(np.sqrt(max(np.trace(cov[3:, 3:]), 0.0))))}
@@ -594,8 +585,10 @@ def solution_uncertainty(measurement, sol: Solution, n_samples: int,
 
 def residual_sigma(sol: Solution) -> float:
     """Per-axis noise the used residuals show: √(Σ|e_i|² / (3n − 6))."""
+    from .precision import residual_sigma as estimate
+
     r = [p.residual for p in sol.points if p.used]
-    return math.sqrt(sum(v * v for v in r) / max(3 * len(r) - 6, 1))
+    return float(estimate(sum(v * v for v in r), len(r)))
 
 
 # ---------------------------------------------------------------- SOLUTION.json

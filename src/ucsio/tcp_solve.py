@@ -43,7 +43,7 @@ import numpy as np
 from . import defaults, horn
 from .errors import UcsioError
 from .frames import Pose
-from .precision import skew
+from .precision import residual_sigma, skew
 
 MAX_ITERATIONS = 50
 STEP_MM = 1e-9              # a Gauss-Newton step this small (mm, rad) has converged
@@ -254,7 +254,7 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
                                       n_auto=marks.count("auto"))
         # the gates, from the used points' geometry
         stated = math.hypot(sigma_laser, sigma_robot)
-        sigma = max(stated, math.sqrt(float(np.sum(r_used ** 2)) / max(3 * n_used - 9, 1)))
+        sigma = max(stated, float(residual_sigma(np.sum(r_used ** 2), n_used, params=9)))
         wu = weights * used
         cov = covariance(laser[used], Rf[used], R, wu[used], sigma)
         finite = bool(np.all(np.isfinite(cov)))
@@ -341,7 +341,7 @@ def uncertainty(measurement, sol, n_samples: int = 10000,
     n = len(L)
     r = np.array([p.residual for p in sol.points])[used]
     stated = math.hypot(sigma_laser, sigma_robot)
-    residual = math.sqrt(float(np.sum(r ** 2)) / max(3 * n - 9, 1))
+    residual = float(residual_sigma(np.sum(r ** 2), n, params=9))
     source = "stated"
     if residual > stated:
         source = "residuals"
