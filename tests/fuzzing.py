@@ -154,6 +154,34 @@ def _sane_error(doc: Document, exc: UcsioError, what: str) -> None:
                           f"({lines} lines): {msg[:200]}")
 
 
+def outcome(cf, err) -> tuple:
+    """What ``check`` shows of a file: its error, or its frames and lints."""
+    from ucsio.commands.check import check_parsed
+
+    if cf is None:
+        return ("error", str(err))
+    return ("parsed", check_parsed(cf), _frames_of(cf))
+
+
+def same_as_whole_tree(doc: Document, full, full_err) -> None:
+    """``check`` (the recogniser over every byte, the fast path for frames)
+    shows exactly what Lark's tree of every byte shows (``parse_whole``)."""
+    from ucsio import krl, rapid
+    from ucsio.controller import detect_vendor
+    from ucsio.document import looks_binary
+
+    if looks_binary(doc.raw):
+        return
+    module = rapid if detect_vendor(doc) == "abb" else krl
+    try:
+        ref = module.parse_whole(doc), None
+    except UcsioError as exc:
+        ref = None, exc
+    if outcome(full, full_err) != outcome(*ref):
+        raise Finding(f"check and the whole-file tree differ: {outcome(full, full_err)!r:.300} "
+                      f"!= {outcome(*ref)!r:.300}")
+
+
 def _frames_of(cf) -> list:
     return [(f.as_dict(), {k: (n.span.start, n.span.end, n.signs) for k, n in f.numbers.items()})
             for f in cf.frames]
@@ -180,6 +208,7 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
         raise Finding("the unedited document does not write back byte for byte")
     fast, fast_err = _parse(doc, full=False)
     full, full_err = _parse(Document(raw, name), full=True)
+    same_as_whole_tree(Document(raw, name), full, full_err)
     if full is not None and fast is None:
         raise Finding(f"check accepts, the fast path refuses: {fast_err}")
     if fast is not None and full is not None:

@@ -39,9 +39,10 @@ def doc_of(text: str | bytes, name: str = "mem.dat") -> Document:
 
 
 def both(doc: Document):
-    """Parse fast and full; assert they agree; return the fast result."""
+    """Parse fast and with Lark's tree of every byte; assert they agree;
+    return the fast result."""
     fast = krl.parse(doc)
-    full = krl.parse(doc, full=True)
+    full = krl.parse_whole(doc)
     assert snapshot(fast) == snapshot(full)
     return fast
 
@@ -62,8 +63,9 @@ def test_corpus_parses_fast_and_full_identically_and_round_trips(path):
     doc = Document.read(path)
     assert doc.to_bytes() == doc.raw == path.read_bytes()
     fast = krl.parse(doc)
-    full = krl.parse(doc, full=True)
+    full = krl.parse_whole(doc)
     assert snapshot(fast) == snapshot(full)
+    assert snapshot(krl.parse(doc, full=True)) == snapshot(full)
     assert fast.vendor == "kuka"
     for fr in fast.frames:
         assert fr.vendor == "kuka" and fr.document is doc and fr.file == str(path)

@@ -30,8 +30,8 @@ def test_corpus_parses_and_round_trips(path):
     doc = Document(raw, path)
     assert doc.to_bytes() == raw
     fast = rapid.parse(doc)
-    full = rapid.parse(Document(raw, path), full=True)
-    # the outline + compact parse and the whole-file parse agree exactly
+    full = rapid.parse_whole(Document(raw, path))
+    # the outline + compact parse and Lark's tree of the whole file agree exactly
     assert [f.as_dict() for f in fast.frames] == [f.as_dict() for f in full.frames]
     assert [f.numbers for f in fast.frames] == [f.numbers for f in full.frames]
     assert fast.lints == full.lints

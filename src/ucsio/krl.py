@@ -5,8 +5,12 @@ KRL data lists are line-oriented: one declaration or element initialisation
 per line, no terminator, ``;`` starts a comment. Two ways through the same
 grammar:
 
-- ``full=True`` (``ucsio check``): Lark parses every byte of the file (start
-  symbol ``file``), so a syntax error anywhere is found.
+- ``full=True`` (``ucsio check``): every byte of the file goes through the
+  grammar (start symbol ``file``) first, so a syntax error anywhere is found:
+  the recogniser (ucsio.recognise: Lark's LALR table and lexer without its
+  tree), then the fast path below for the frames. Where the recogniser
+  rejects, ``parse_whole`` (Lark's tree of every byte) gives the positioned
+  error.
 - the fast path (``ucsio frames``, ``diff``, ``patch``): a line-oriented
   outline (a few regular expressions, one pass each) picks the lines that
   matter for frames: FRAME declarations, element lines of FRAME arrays,
@@ -40,6 +44,7 @@ array element, under its declared spelling (``gfBaseShift[2]``), reference
 """
 from __future__ import annotations
 
+import functools
 import re
 from typing import Any
 
@@ -555,7 +560,28 @@ def _defdat(tree):
 
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:
-    """Parse a KRL data list into frames, lints and tables."""
+    """Parse a KRL data list into frames, lints and tables. ``full``
+    (``check``): every byte through the grammar first."""
+    text = _lines(doc)
+    if full:
+        from .recognise import Rejected
+        try:
+            _recogniser().check(text)
+        except Rejected:
+            return parse_whole(doc)     # Lark's positioned error (or, were the two to differ, its tree)
+    # the frame lines and the layout lines (outline), the rest blanked out
+    spans = outline(text)
+    got = _shared_parse(doc, text, spans)
+    if got is None:
+        tree = _parse(doc, masked(text, spans), "file")
+        stmts = _statements(tree, doc)
+    else:
+        stmts, tree = got
+    return _interpret(doc, stmts, tree)
+
+
+def _lines(doc: Document) -> str:
+    """The text the grammar reads: lines end at LF."""
     text = doc.text
     if "\r" in text and "\n" not in text:
         # bare-CR line endings (some KRC tools save them): lines end at CR, as
@@ -565,18 +591,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     if not text.strip():
         # a fragment may hold any statements, but none at all is a failed transfer
         raise doc.error("empty file: no KRL data (DEFDAT ... ENDDAT or declarations)", 0)
-    if full:
-        tree = _parse(doc, text, "file")
-        stmts = _statements(tree, doc)
-    else:
-        # the frame lines and the layout lines (outline), the rest blanked out
-        spans = outline(text)
-        got = _shared_parse(doc, text, spans)
-        if got is None:
-            tree = _parse(doc, masked(text, spans), "file")
-            stmts = _statements(tree, doc)
-        else:
-            stmts, tree = got
+    return text
+
+
+def _interpret(doc: Document, stmts, tree) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=VENDOR)
     try:
         _Interpreter(doc, cf).run(stmts)
@@ -584,6 +602,44 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         raise doc.error(f"value nested more than {MAX_NESTING} levels deep", exc.pos) from None
     cf.extra["defdat"] = _defdat(tree)
     return cf
+
+
+def parse_whole(doc: Document) -> ControllerFile:
+    """``parse(doc, full=True)`` with Lark building the tree of every byte:
+    the reference the recogniser is tested against, and the way to the
+    exact message when it rejects a file."""
+    text = _lines(doc)
+    tree = _parse(doc, text, "file")
+    return _interpret(doc, _statements(tree, doc), tree)
+
+
+def _recogniser():
+    """The whole-file check: Lark's tables over every byte (ucsio.recognise),
+    a structure literal read in one step. Tokens the interpretation of the
+    whole tree would refuse (an INT beyond 32 bits, a reserved word as a
+    type name) send the file to Lark's full parse, which says where."""
+    global _RECOGNISER
+    if _RECOGNISER is None:
+        from .recognise import atomic, bracketed, build, terminal_pattern
+
+        lark = _parser()
+        tp = functools.partial(terminal_pattern, lark)
+        gap = f"{atomic(tp('WS'))}?+"
+        name = atomic(tp("NAME"))
+        value = "|".join(atomic(tp(t)) for t in ("NUMBER", "STRING", "CHARLIT", "ENUMVAL", "NAME"))
+        struct = None
+        for _ in range(3):          # {X 1,...}, {FRAME: {X ..},...}, one more level
+            item = value if struct is None else f"{struct}|{value}"
+            field = f"(?:{name}{gap}:{gap})?+{name}{gap}(?:\\[{gap}\\]{gap})?+(?:{item})"
+            struct = bracketed(r"\{", r"\}", field, gap)
+        # value: NUMBER | struct: the parser moves on alike after either
+        _RECOGNISER = build(
+            lark, "file", shortcuts={"LBRACE": (re.compile(struct), "NUMBER")},
+            suspects={"INT": lambda v: len(v) > 9, "NAME": lambda v: v.upper() in _RESERVED})
+    return _RECOGNISER
+
+
+_RECOGNISER = None
 
 
 class _Interpreter:

@@ -2,7 +2,12 @@
 
 Two ways through the same grammar:
 
-- ``full=True`` (``ucsio check``): Lark parses every byte of the file.
+- ``full=True`` (``ucsio check``): every byte of the file goes through the
+  grammar's LALR table and lexer (ucsio.recognise: Lark's tables without
+  its tree), then the fast path below reads the frames, and every other
+  declaration is listed from its words (its value parsed only if read).
+  Where the recogniser rejects, ``parse_whole`` (Lark's tree of every byte)
+  gives the positioned error.
 - the fast path (``ucsio frames``, ``diff``, ``patch``): an outline scanner
   (one regular expression, the same lexical rules as the grammar) walks the
   module's top-level items: comments, routines, records, declarations. Only
@@ -11,11 +16,13 @@ Two ways through the same grammar:
   of the original file, so every span points into the real document. A module
   with 20,000 robtargets thus costs one regex pass, not 20,000 Lark parses.
 
-Both paths give the same frames (tests/test_rapid.py checks it on the corpus).
+Both paths give the same frames (tests/test_rapid.py checks it on the corpus),
+and ``full=True`` shows what ``parse_whole`` shows (tests/test_recognise.py).
 """
 from __future__ import annotations
 
 import bisect
+import functools
 import re
 
 from .controller import ControllerFile
@@ -344,6 +351,36 @@ class Decl(Value):
         return self._convert()[1]
 
 
+class _LazyDecl(Decl):
+    """A declaration known from its words; its dims and value are parsed
+    (Lark, start ``data_decl``, over its own text) only when read, as
+    reading a measurement program's robtargets does."""
+
+    __slots__ = ()
+
+    def _convert(self) -> tuple:
+        if self._converted is None:
+            doc = self._doc
+            text = doc.text[self.start:self.end]
+            try:
+                tree = _parser().parse(text, start="data_decl")
+            except Exception:   # pragma: no cover - the recogniser accepted the file
+                raise doc.error(f"{self.name}: declaration not understood", self.start) from None
+            _shift_tokens(tree, self.start)
+            self._nodes = _decl_parts(tree)[4:]
+        return Decl._convert(self)
+
+
+def _shift_tokens(tree, delta: int) -> None:
+    from lark import Token
+
+    for sub in tree.iter_subtrees():
+        for tok in sub.children:
+            if isinstance(tok, Token) and tok.start_pos is not None:
+                tok.start_pos += delta
+                tok.end_pos += delta
+
+
 class _Expr:
     """A value that is not a literal (a name, a call, arithmetic)."""
 
@@ -446,24 +483,31 @@ def declarations(doc: Document, tree) -> list[Decl]:
         for item in module.children[1:]:
             if not isinstance(item, Tree) or item.data != "data_decl":
                 continue
-            ch = item.children
-            i = 0
-            scope = None
-            if isinstance(ch[0], Tree) and ch[0].data == "scope":
-                scope = str(ch[0].children[0]).upper()
-                i = 1
-            storage = str(ch[i].children[0]).upper()
-            type_name, name = str(ch[i + 1]), str(ch[i + 2])
-            dims_node = value_node = None
-            for r in ch[i + 3:]:
-                if isinstance(r, Tree) and r.data == "dims":
-                    dims_node = r
-                else:
-                    value_node = r
+            scope, storage, type_name, name, dims_node, value_node = _decl_parts(item)
             start, end = _extent(item)
             out.append(Decl(scope, storage, type_name, name, (dims_node, value_node), start, end,
                             module_name, doc))
     return out
+
+
+def _decl_parts(item) -> tuple:
+    """A data_decl node's scope, storage, type, name, dims node, value node."""
+    from lark import Tree
+
+    ch = item.children
+    i = 0
+    scope = None
+    if isinstance(ch[0], Tree) and ch[0].data == "scope":
+        scope = str(ch[0].children[0]).upper()
+        i = 1
+    storage = str(ch[i].children[0]).upper()
+    dims_node = value_node = None
+    for r in ch[i + 3:]:
+        if isinstance(r, Tree) and r.data == "dims":
+            dims_node = r
+        else:
+            value_node = r
+    return scope, storage, str(ch[i + 1]), str(ch[i + 2]), dims_node, value_node
 
 
 def _nums(v, n: int) -> list[Number] | None:
@@ -697,23 +741,99 @@ def _start_of(v, default: int) -> int:
 
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:
-    cf = ControllerFile(document=doc, vendor="abb")
-    regions = outline(doc)  # structure errors read best from the outline
+    """Frames and lints of a module. ``full`` (``check``): every byte through
+    the grammar as well, and every declaration listed (``declarations``;
+    values other than frames' are parsed when first read)."""
+    regions = outline(doc, routines=full)  # structure errors read best from the outline
     if full:
         _check_numbers(doc)
-        tree = parse_tree(doc, doc.text)
-    else:
-        compact = Compact(doc, regions)
+        from .recognise import Rejected
         try:
-            tree = parse_tree(doc, compact.text, compact)
-        except UcsioError:
-            _check_numbers(doc)  # "bad number '1.2.3'" says more than Lark's token error
-            raise
-        compact.remap(tree)
+            _recogniser().check(doc.text)
+        except Rejected:
+            return parse_whole(doc)      # Lark's positioned error (or, were the two to differ, its tree)
+    frame_regions = [r for r in regions if r.kind not in ("decls", "routine")]
+    compact = Compact(doc, frame_regions)
+    try:
+        tree = parse_tree(doc, compact.text, compact)
+    except UcsioError:
+        _check_numbers(doc)  # "bad number '1.2.3'" says more than Lark's token error
+        raise
+    compact.remap(tree)
     decls = declarations(doc, tree)
+    if full:
+        decls = sorted(decls + _other_declarations(doc, regions), key=lambda d: d.start)
+    return _interpret(doc, decls)
+
+
+def parse_whole(doc: Document) -> ControllerFile:
+    """``parse(doc, full=True)`` with Lark building the tree of every byte:
+    the reference the recogniser is tested against, and the way to the
+    exact message when it rejects a file."""
+    outline(doc)
+    _check_numbers(doc)
+    return _interpret(doc, declarations(doc, parse_tree(doc, doc.text)))
+
+
+def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
+    cf = ControllerFile(document=doc, vendor="abb")
     cf.extra["declarations"] = decls
     frames_from(cf, decls)
     return cf
+
+
+# -- check: the recogniser and the declarations the fast path leaves out -----------
+def _recogniser():
+    global _RECOGNISER
+    if _RECOGNISER is None:
+        from .recognise import atomic, bracketed, build, terminal_pattern
+
+        lark = _parser()
+        tp = functools.partial(terminal_pattern, lark)
+        gap = f"(?:{atomic(tp('WS'))}|{atomic(tp('COMMENT'))})*+"
+        # a literal number (signs are unary operators), string or boolean
+        element = (f"(?:[+-]{gap})*+{atomic(tp('NUMBER'))}|{atomic(tp('STRING'))}"
+                   f"|{atomic(tp('BOOL'))}")
+        aggregate = bracketed(r"\[", r"\]", element, gap)
+        for _ in range(3):          # robtarget arrays: [[[x, y, z], [q1, ...], ...], ...]
+            aggregate = bracketed(r"\[", r"\]", f"{aggregate}|{element}", gap)
+        # atom: NUMBER | aggregate: the parser moves on alike after either
+        _RECOGNISER = build(lark, "file", shortcuts={"LSQB": (re.compile(aggregate), "NUMBER")})
+    return _RECOGNISER
+
+
+_RECOGNISER = None
+# one declaration at the head of a run the outline found (`decls`): its words
+_DECL_WORDS = re.compile(
+    r"(?:\s++|![^\r\n]*+)*+(?P<decl>(?:(?P<scope>LOCAL|TASK)" + _GAP + r")?(?P<storage>PERS|CONST|VAR)"
+    + _GAP + r"(?P<type>\w++|" + _PLACEHOLDER + r")(?:\s|![^\r\n]*+)*+(?P<name>\w++|" + _PLACEHOLDER
+    + r")" + _DECL_REST + ")", re.IGNORECASE)
+_MODULE_NAME = re.compile(r"MODULE\b(?:\s|![^\r\n]*+)*+(\w*)", re.IGNORECASE)
+
+
+def _other_declarations(doc: Document, regions: list[Region]) -> list["Decl"]:
+    """The declarations in the outline's runs (every one but the frames'),
+    from their words; the recogniser has accepted the file, so each is a
+    data_decl of the grammar. A value is parsed only if read."""
+    text = doc.text
+    out = []
+    module = ""
+    for r in regions:
+        if r.kind == "module":
+            module = _MODULE_NAME.match(text, r.span.start).group(1)
+            continue
+        if r.kind != "decls":
+            continue
+        pos, end = r.span.start, r.span.end
+        while pos < end:
+            m = _DECL_WORDS.match(text, pos, end)
+            if m is None:       # pragma: no cover - the outline matched this run
+                raise doc.error("declaration not understood", pos)
+            storage, scope = m.group("storage").upper(), m.group("scope")
+            out.append(_LazyDecl(scope.upper() if scope else None, storage, m.group("type"),
+                                 m.group("name"), None, m.start("decl"), m.end(), module, doc))
+            pos = m.end()
+    return out
 
 
 # -- taught positions (robtargets) ---------------------------------------------------
