@@ -25,11 +25,14 @@ import random
 from pathlib import Path
 
 from oracles import only_numbers_changed
+from ucsio import grammar
+from ucsio import lalr
 from ucsio import rotations as rot
 from ucsio.controller import parse
 from ucsio.document import Document
 from ucsio.errors import UcsioError
 from ucsio.frames import Pose
+from ucsio.lalr import Rejected
 
 ROOT = Path(__file__).resolve().parents[1]
 CORPUS = ROOT.parent / "shared" / "corpus"
@@ -163,6 +166,34 @@ def outcome(cf, err) -> tuple:
     return ("parsed", check_parsed(cf), _frames_of(cf))
 
 
+def lark_tree(module, text: str, start: str = "file"):
+    """Lark's tree of ``text``, or None where Lark rejects it."""
+    from lark.exceptions import LarkError
+
+    try:
+        return grammar.lark_parser(module.__name__.rsplit(".")[-1], module.START).parse(
+            text, start=start)
+    except LarkError:
+        return None
+
+
+def same_tree(ours, theirs) -> bool:
+    """Node for node, token for token (type, text, offsets), no recursion."""
+    from lark import Tree as LarkTree
+
+    stack = [(ours, theirs)]
+    while stack:
+        a, b = stack.pop()
+        if isinstance(b, LarkTree):
+            if not isinstance(a, lalr.Tree) or a.data != b.data or len(a.children) != len(b.children):
+                return False
+            stack.extend(zip(a.children, b.children))
+        elif not (isinstance(a, lalr.Token) and (a.type, a.value, a.start_pos, a.end_pos)
+                  == (b.type, b.value, b.start_pos, b.end_pos)):
+            return False
+    return True
+
+
 def same_as_whole_tree(doc: Document, full, full_err) -> None:
     """``check`` (the recogniser over every byte, the fast path for frames)
     shows exactly what Lark's tree of every byte shows (``parse_whole``)."""
@@ -173,6 +204,16 @@ def same_as_whole_tree(doc: Document, full, full_err) -> None:
     if looks_binary(doc.raw):
         return
     module = rapid if detect_vendor(doc) == "abb" else krl
+    text = krl._lines(doc) if module is krl and doc.text.strip() else doc.text
+    want = lark_tree(module, text)
+    try:
+        got = module._parser().parse(text, "file")
+    except Rejected:
+        got = None
+    if (got is None) != (want is None) or (want is not None and not same_tree(got, want)):
+        raise Finding("ucsio.lalr's tree is not Lark's" if want is not None and got is not None
+                      else f"ucsio.lalr {'accepts' if got is not None else 'rejects'} what "
+                           f"Lark {'rejects' if want is None else 'accepts'}")
     try:
         ref = module.parse_whole(doc), None
     except UcsioError as exc:

@@ -512,3 +512,55 @@ def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
     with pytest.raises(UcsioError, match="also declared in same.mod"):
         patch_frame(cf, "wobjA.oframe", Pose.from_abc(1, 2, 4, 0, 0, 0), measured=False)
     assert "other.mod" not in parsed and "same.mod" in parsed
+
+
+# -- the diff a patch shows ------------------------------------------------------
+def _whole_file_diff(doc, new_bytes, label, n=1):
+    """The diff from every line of both files, trimmed to the changed lines
+    and their context before difflib matches them (what unified_diff did
+    before it split only the changed window into lines): the reference."""
+    import difflib
+    import re
+
+    from ucsio.document import text_lines
+
+    new_text = Document(new_bytes, doc.path).text
+    a, b = text_lines(doc.text), text_lines(new_text)
+    lo, limit = 0, min(len(a), len(b))
+    while lo < limit and a[lo] == b[lo]:
+        lo += 1
+    hi = 0
+    while hi < limit - lo and a[-1 - hi] == b[-1 - hi]:
+        hi += 1
+    lo, hi = max(0, lo - n), max(0, hi - n)
+    out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], f"a/{label}", f"b/{label}",
+                               n=n, lineterm="")
+    hunk = re.compile(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")
+    out = [hunk.sub(lambda m: f"@@ -{int(m[1]) + lo}{m[2] or ''} +{int(m[3]) + lo}{m[4] or ''} @@",
+                    line, count=1) if line.startswith("@@") and lo else line for line in out]
+    return "\n".join(out) + ("\n" if new_text != doc.text else "")
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=300, deadline=None, derandomize=True, database=None)
+@given(lines=st.lists(st.sampled_from(["a", "b", "PERS x:=1;", "", "  ! c", "9E9"]),
+                      min_size=0, max_size=30),
+       eol=st.sampled_from(["\n", "\r\n", "\r\r\n", "\r"]), final=st.booleans(),
+       edits=st.lists(st.tuples(st.integers(0, 10 ** 6), st.integers(0, 3),
+                                st.sampled_from(["", "1", "x\n", "\n", "-0.5", "b"])),
+                      min_size=1, max_size=3))
+def test_patch_diff_from_the_changed_window_equals_the_whole_file_diff(lines, eol, final, edits):
+    from ucsio.patch import unified_diff
+
+    text = eol.join(lines) + (eol if final and lines else "")
+    new = text
+    for at, cut, put in edits:
+        at = at % (len(new) + 1)
+        new = new[:at] + put + new[at + cut:]
+    if eol == "\r":
+        new = new.replace("\n", "\r")       # a bare-CR file stays one
+    doc = Document(text.encode(), "m.mod")
+    assert unified_diff(doc, new.encode(), "m.mod") == _whole_file_diff(doc, new.encode(), "m.mod")

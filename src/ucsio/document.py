@@ -140,12 +140,13 @@ class Document:
 
 
 
-def text_lines(text: str) -> list[str]:
+def text_lines(text: str, eol: str | None = None) -> list[str]:
     """Lines without their endings, for showing diffs: CRLF and CR CR LF lose
     their CRs, and a final newline ends the last line (it adds none). A file
     with bare-CR endings only (classic Mac, some KRC tools) ends lines at CR,
-    as Document.line_starts does."""
-    eol = "\n" if "\n" in text or "\r" not in text else "\r"
+    as Document.line_starts does (``eol``: the whole file's, for a part of it)."""
+    if eol is None:
+        eol = "\n" if "\n" in text or "\r" not in text else "\r"
     lines = text.split(eol)
     if lines and lines[-1] == "":
         lines.pop()

@@ -1,13 +1,21 @@
-"""Loading the Lark grammars that ship with ucsio.
+"""The grammars that ship with ucsio, compiled by Lark, run by ucsio.lalr.
 
 The grammars are data (grammars/*.lark at the top of the repository, copied
-into the wheel as ucsio/grammars). Lark's analysis is cached on disk
-(``cache=True``) so a command pays it once per machine, not once per run.
+into the wheel as ucsio/grammars). Lark compiles each into LALR tables once
+per machine; ``tables`` keeps them on disk (JSON, keyed by the grammar's
+text), so a command that reads a file never imports Lark. Only a syntax
+error does: ``parse`` asks Lark itself for the positioned message, so what
+the user reads is Lark's diagnosis of exactly the text we rejected.
 """
 from __future__ import annotations
 
 import functools
+import json
+import os
+import zlib
 from pathlib import Path
+
+from . import lalr
 
 
 def grammar_dir() -> Path:
@@ -18,14 +26,108 @@ def grammar_dir() -> Path:
     return here.parent.parent / "grammars"  # source checkout / editable install
 
 
+class SyntaxFailure(Exception):
+    """Text the grammar rejects; ``error`` is Lark's own exception for it
+    (UnexpectedToken, UnexpectedCharacters, UnexpectedEOF), with position."""
+
+    def __init__(self, error: Exception):
+        super().__init__(str(error))
+        self.error = error
+
+
 @functools.lru_cache(maxsize=None)
-def parser(name: str, start: tuple[str, ...], positions: bool = True):
-    """A cached LALR parser. ``positions=False`` skips Lark's position
-    propagation to rule nodes (a third of the parse time); tokens always keep
-    theirs, which is all a grammar that keeps its sign tokens needs."""
-    from lark import Lark  # lazy: only commands that parse pay for it
+def parser(name: str, start: tuple[str, ...]) -> lalr.Parser:
+    """The run-time parser of grammars/NAME.lark with these start symbols."""
+    return lalr.Parser(tables(name, start))
+
+
+def parse(name: str, start: tuple[str, ...], text: str, symbol: str) -> lalr.Tree:
+    """The tree of ``text`` from start symbol ``symbol``; SyntaxFailure,
+    with Lark's positioned exception, where the grammar rejects it."""
+    try:
+        return parser(name, start).parse(text, symbol)
+    except lalr.Rejected:
+        pass
+    from lark.exceptions import LarkError
+
+    try:
+        tree = lark_parser(name, start).parse(text, start=symbol)
+    except LarkError as exc:
+        raise SyntaxFailure(exc) from None
+    return from_lark(tree)      # not reached while the two agree (tests/test_lalr.py)
+
+
+def tables(name: str, start: tuple[str, ...]) -> dict:
+    """The LALR tables, from the disk cache or (first run, changed grammar)
+    from Lark; the cache is written atomically, and where it cannot be
+    written the tables are simply rebuilt next time."""
+    text = (grammar_dir() / f"{name}.lark").read_text(encoding="utf-8")
+    # hashlib would cost a cold start 6 ms (it loads OpenSSL); a CRC and
+    # the length tell an edited grammar from the cached one
+    data = f"{lalr.FORMAT}\0{','.join(start)}\0{text}".encode()
+    key = f"{zlib.crc32(data):08x}{len(data):x}"
+    path = cache_dir() / f"{name}-{key}.json"
+    try:
+        got = json.loads(path.read_bytes())
+        if got.get("format") == lalr.FORMAT:
+            return got
+    except (OSError, ValueError, AttributeError):
+        pass
+    got = lalr.tables_from_lark(lark_parser(name, start))
+    _write_cache(path, json.dumps(got, separators=(",", ":")).encode())
+    return json.loads(json.dumps(got))      # as read back from disk: tuples become lists
+
+
+def cache_dir() -> Path:
+    where = os.environ.get("UCSIO_CACHE_DIR")
+    if where:
+        return Path(where)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "ucsio"
+
+
+def _write_cache(path: Path, data: bytes) -> None:
+    import tempfile
+
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+            os.replace(tmp, path)
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    except OSError:
+        pass            # a read-only home: correct, only slower
+
+
+@functools.lru_cache(maxsize=None)
+def lark_parser(name: str, start: tuple[str, ...]):
+    """Lark's own LALR parser of the grammar: it compiles the tables and
+    words the syntax errors."""
+    from lark import Lark
 
     path = grammar_dir() / f"{name}.lark"
     return Lark(path.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
-                start=list(start), propagate_positions=positions, maybe_placeholders=False,
+                start=list(start), propagate_positions=False, maybe_placeholders=False,
                 cache=True)
+
+
+def from_lark(tree) -> lalr.Tree:
+    """A Lark tree as ucsio.lalr's Tree and Token (no recursion)."""
+    from lark import Tree as LarkTree
+
+    def convert(node):
+        if isinstance(node, LarkTree):
+            return lalr.Tree(str(node.data), list(node.children))
+        return lalr.Token(node.type, node.value, node.start_pos, node.end_pos)
+
+    root = convert(tree)
+    stack = [root]
+    while stack:
+        node = stack.pop()
+        node.children = [convert(c) for c in node.children]
+        stack.extend(c for c in node.children if isinstance(c, lalr.Tree))
+    return root

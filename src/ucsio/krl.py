@@ -7,9 +7,9 @@ grammar:
 
 - ``full=True`` (``ucsio check``): every byte of the file goes through the
   grammar (start symbol ``file``) first, so a syntax error anywhere is found:
-  the recogniser (ucsio.recognise: Lark's LALR table and lexer without its
+  the recogniser (ucsio.lalr: the grammar's LALR table and lexer, no
   tree), then the fast path below for the frames. Where the recogniser
-  rejects, ``parse_whole`` (Lark's tree of every byte) gives the positioned
+  rejects, ``parse_whole`` (the tree of every byte) gives the positioned
   error.
 - the fast path (``ucsio frames``, ``diff``, ``patch``): a line-oriented
   outline (a few regular expressions, one pass each) picks the lines that
@@ -20,14 +20,14 @@ grammar:
   layout (``_layout_lines``: the ``&`` header lines, the DEFDAT and ENDDAT
   lines, the first statement line, the first one after ENDDAT). Every other
   character is replaced by a space (newlines kept), so offsets and line
-  numbers are those of the real file, and Lark parses that masked text in
+  numbers are those of the real file, and the grammar parses that masked text in
   one call, with the same start symbol ``file``: a layout ``check`` rejects
   (text after ENDDAT, a second or malformed DEFDAT, a header or a statement
   before DEFDAT where it cannot be, no ENDDAT) fails the fast path too, with
   the same message at the same place. A value repeated on several element lines (zero frames, unset
-  loads) is given to Lark once: the later copies become a placeholder and
+  loads) is parsed once: the later copies become a placeholder and
   share the first one's tree, moved to their own offsets. A 120 KB
-  $config.dat costs about 200 short lines and 1,800 tokens of Lark, not
+  $config.dat costs about 200 short lines and 1,800 tokens, not
   3,000 lines.
 
 Both paths feed the same interpretation, which only looks at those
@@ -52,6 +52,7 @@ from .controller import ControllerFile
 from .document import Document, Span
 from .errors import MAX_NESTING, TooDeep, UcsioError
 from .frames import Frame, Number, Pose
+from .lalr import Rejected, Token, Tree
 from .values import Value
 
 VENDOR = "kuka"
@@ -218,7 +219,7 @@ def _machine_lines(mframes, mdefs) -> list[tuple[int, int]]:
 def _shared_values(text: str, spans: list[tuple[int, int]]):
     """Lines ``NAME...=VALUE`` whose VALUE text (all after the first "=") an
     earlier line has too: a config file repeats a few values (zero frames,
-    unset loads) many times, and Lark need read each only once.
+    unset loads) many times, and the parser need read each only once.
 
     Returns (placeholders, shared): ``placeholders`` (start, end) of the later
     values, each to be written as a 0 padded with spaces; ``shared`` maps the
@@ -246,13 +247,10 @@ def _shared_values(text: str, spans: list[tuple[int, int]]):
 
 
 def _shared_parse(doc: Document, text: str, spans):
-    """(statements, tree) of the masked text, Lark reading each repeated
+    """(statements, tree) of the masked text, the parser reading each repeated
     value once (_shared_values); None when that is not possible here (a
     syntax error, or a shared value not read as an assignment): the caller
     then parses the masked text as it is, with its exact error."""
-    from lark import Token
-    from lark.exceptions import LarkError
-
     placeholders, shared = _shared_values(text, spans)
     if not shared:
         return None
@@ -265,9 +263,9 @@ def _shared_parse(doc: Document, text: str, spans):
         pos = e
     pieces.append(mtext[pos:])
     try:
-        tree = _parser().parse("".join(pieces), start="file")
+        tree = _parser().parse("".join(pieces), "file")
         stmts = _statements(tree, doc)
-    except (LarkError, UcsioError):
+    except (Rejected, UcsioError):
         return None
     assigns = {st.start: st for st in stmts if st.kind == "assign"}
     for start, (src, delta, pos) in shared.items():
@@ -301,7 +299,7 @@ def masked(text: str, spans: list[tuple[int, int]]) -> str:
 # -- parsing -------------------------------------------------------------------
 def _parser():
     from .grammar import parser
-    return parser("krl", START, positions=False)
+    return parser("krl", START)
 
 
 def _raise_syntax(doc: Document, text: str, exc: Exception):
@@ -401,17 +399,17 @@ def _bad_number(text: str, pos: int):
 
 
 def _parse(doc: Document, text: str, start: str):
-    from lark.exceptions import LarkError
+    from .grammar import SyntaxFailure, parse
 
     try:
-        return _parser().parse(text, start=start)
-    except LarkError as exc:
+        return parse("krl", START, text, start)
+    except SyntaxFailure as failure:
         if start == "file":
             m = _DEFDAT.search(text)
             if m is not None and re.compile(_STATEMENT_BEFORE, re.M).search(text, 0, m.start()):
                 raise doc.error("DEFDAT must come first, after the & header lines",
                                 m.start() + len(m.group()) - len(m.group().lstrip())) from None
-        raise _raise_syntax(doc, text, exc) from None
+        raise _raise_syntax(doc, text, failure.error) from None
 
 
 # -- interpretation --------------------------------------------------------------
@@ -493,8 +491,6 @@ _RESERVED = {"DEFDAT", "ENDDAT", "DEF", "END", "DEFFCT", "ENDFCT"}
 
 def _statements(tree, doc: Document):
     """decl and assign statements of the tree, simplified, in order."""
-    from lark import Tree
-
     out = []
     for st in tree.children:        # file: headers, then defdat or the statements
 
@@ -511,7 +507,7 @@ def _statements(tree, doc: Document):
             s = _Stmt()
             s.kind = "decl"
             s.delta = 0
-            s.line = ch[0].line
+            s.line = doc.line_of(ch[0].start_pos)
             s.start = ch[0].start_pos
             s.mods = mods
             s.type = ch[i].value.upper()
@@ -537,7 +533,7 @@ def _statements(tree, doc: Document):
             s = _Stmt()
             s.kind = "assign"
             s.delta = 0
-            s.line = ch[0].line
+            s.line = doc.line_of(ch[0].start_pos)
             s.start = ch[0].start_pos
             s.name = ch[0]
             s.index = None
@@ -564,11 +560,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     (``check``): every byte through the grammar first."""
     text = _lines(doc)
     if full:
-        from .recognise import Rejected
         try:
-            _recogniser().check(text)
+            _recognise(text)
         except Rejected:
-            return parse_whole(doc)     # Lark's positioned error (or, were the two to differ, its tree)
+            return parse_whole(doc)     # the positioned error (or, were the two to differ, the tree)
     # the frame lines and the layout lines (outline), the rest blanked out
     spans = outline(text)
     got = _shared_parse(doc, text, spans)
@@ -605,41 +600,40 @@ def _interpret(doc: Document, stmts, tree) -> ControllerFile:
 
 
 def parse_whole(doc: Document) -> ControllerFile:
-    """``parse(doc, full=True)`` with Lark building the tree of every byte:
-    the reference the recogniser is tested against, and the way to the
-    exact message when it rejects a file."""
+    """``parse(doc, full=True)`` from the tree of every byte (ucsio.lalr
+    shaped as Lark shapes it): the reference the recogniser is tested
+    against, and the way to the exact message when it rejects a file."""
     text = _lines(doc)
     tree = _parse(doc, text, "file")
     return _interpret(doc, _statements(tree, doc), tree)
 
 
-def _recogniser():
-    """The whole-file check: Lark's tables over every byte (ucsio.recognise),
-    a structure literal read in one step. Tokens the interpretation of the
-    whole tree would refuse (an INT beyond 32 bits, a reserved word as a
-    type name) send the file to Lark's full parse, which says where."""
-    global _RECOGNISER
-    if _RECOGNISER is None:
-        from .recognise import atomic, bracketed, build, terminal_pattern
+def _recognise(text: str) -> None:
+    """Every byte through the grammar (ucsio.lalr.Parser.recognise), a
+    structure literal read in one step; Rejected if not KRL. Tokens the
+    interpretation of the whole tree would refuse (an INT beyond 32 bits, a
+    reserved word as a type name) reject too: the whole tree says where."""
+    global _SHORTCUTS
+    parser = _parser()
+    if _SHORTCUTS is None:
+        from .lalr import atomic, bracketed
 
-        lark = _parser()
-        tp = functools.partial(terminal_pattern, lark)
-        gap = f"{atomic(tp('WS'))}?+"
-        name = atomic(tp("NAME"))
-        value = "|".join(atomic(tp(t)) for t in ("NUMBER", "STRING", "CHARLIT", "ENUMVAL", "NAME"))
+        tp = parser.terminals
+        gap = f"{atomic(tp['WS'])}?+"
+        name = atomic(tp["NAME"])
+        value = "|".join(atomic(tp[t]) for t in ("NUMBER", "STRING", "CHARLIT", "ENUMVAL", "NAME"))
         struct = None
         for _ in range(3):          # {X 1,...}, {FRAME: {X ..},...}, one more level
             item = value if struct is None else f"{struct}|{value}"
             field = f"(?:{name}{gap}:{gap})?+{name}{gap}(?:\\[{gap}\\]{gap})?+(?:{item})"
             struct = bracketed(r"\{", r"\}", field, gap)
         # value: NUMBER | struct: the parser moves on alike after either
-        _RECOGNISER = build(
-            lark, "file", shortcuts={"LBRACE": (re.compile(struct), "NUMBER")},
-            suspects={"INT": lambda v: len(v) > 9, "NAME": lambda v: v.upper() in _RESERVED})
-    return _RECOGNISER
+        _SHORTCUTS = {"LBRACE": (re.compile(struct), "NUMBER")}
+    parser.recognise(text, "file", _SHORTCUTS, _SUSPECTS)
 
 
-_RECOGNISER = None
+_SUSPECTS = {"INT": lambda v: len(v) > 9, "NAME": lambda v: v.upper() in _RESERVED}
+_SHORTCUTS = None
 
 
 class _Interpreter:

@@ -39,7 +39,6 @@ import math
 import os
 import re
 import struct
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -49,6 +48,7 @@ from .document import Document, Edit, Span, looks_binary, text_lines
 from .errors import UcsioError
 from .files import atomic_write, write_target
 from .frames import Frame, Number, Pose
+from .values import Value
 
 # Written precision (decimals) and half a step: what "unchanged" means.
 TRANS_DECIMALS = 3
@@ -112,13 +112,14 @@ def f32(v: float) -> float:
 
 # ----------------------------------------------------------------- planning
 
-@dataclass(frozen=True)
-class Change:
-    component: str
-    old: str
-    new: str
-    old_value: float
-    new_value: float
+class Change(Value):
+    """One number rewritten: its component, old and new text and value."""
+
+    __slots__ = ("component", "old", "new", "old_value", "new_value")
+
+    def __init__(self, component: str, old: str, new: str, old_value: float, new_value: float):
+        self.component, self.old, self.new = component, old, new
+        self.old_value, self.new_value = old_value, new_value
 
     def as_dict(self) -> dict[str, Any]:
         return {"component": self.component, "old": self.old, "new": self.new,
@@ -454,20 +455,20 @@ def _close32(u: float, v: float) -> bool:
 
 # ----------------------------------------------------------------- patching
 
-@dataclass
-class PatchResult:
+class PatchResult(Value):
     """A planned patch: the new bytes and what changed. Nothing is written
     until ``save``."""
 
-    path: str
-    frame: Frame
-    pose: Pose
-    document: Document
-    new_bytes: bytes
-    changes: list[Change]
-    warnings: list[str] = field(default_factory=list)
-    written: str | None = None
-    backup: str | None = None
+    __slots__ = ("path", "frame", "pose", "document", "new_bytes", "changes", "warnings",
+                 "written", "backup")
+
+    def __init__(self, path: str, frame: Frame, pose: Pose, document: Document,
+                 new_bytes: bytes, changes: list[Change], warnings: list[str] | None = None,
+                 written: str | None = None, backup: str | None = None):
+        self.path, self.frame, self.pose, self.document = path, frame, pose, document
+        self.new_bytes, self.changes = new_bytes, changes
+        self.warnings = [] if warnings is None else warnings
+        self.written, self.backup = written, backup
 
     @property
     def old_bytes(self) -> bytes:
@@ -495,10 +496,23 @@ class PatchResult:
 def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: int = 1) -> str:
     new_text = Document(new_bytes, doc.path).text
     label = (label or doc.path).replace(os.sep, "/").lstrip("/")
-    a, b = text_lines(doc.text), text_lines(new_text)
-    # a patch changes a few lines: difflib gets them and n lines of context,
-    # not the whole file (its matching was a third of a patch on a 2.6 MB
-    # module); the hunk headers are moved back to the file's line numbers
+    old_text = doc.text
+    # a patch changes a few lines: only they and their context are split
+    # into lines and given to difflib (splitting and matching a 2.6 MB module
+    # was a third of a patch); hunk headers are moved back to the file's lines
+    starts = doc.line_starts
+    first = _common_prefix(old_text, new_text)
+    tail = _common_suffix(old_text, new_text, min(len(old_text), len(new_text)) - first)
+    top = max(0, bisect.bisect_right(starts, first) - 1 - n - 1)
+    bottom = bisect.bisect_right(starts, len(old_text) - tail) + n + 1
+    begin = starts[top]
+    end = starts[bottom] if bottom < len(starts) else len(old_text)
+    eol = "\n" if "\n" in old_text or "\r" not in old_text else "\r"
+    if eol != ("\n" if "\n" in new_text or "\r" not in new_text else "\r"):
+        top, begin, end = 0, 0, len(old_text)   # the edit changed what ends a line: all of it
+    a = text_lines(old_text[begin:end], eol)
+    b = text_lines(new_text[begin:end + len(new_text) - len(old_text)],
+                   None if end == len(old_text) and begin == 0 else eol)
     lo, limit = 0, min(len(a), len(b))
     while lo < limit and a[lo] == b[lo]:
         lo += 1
@@ -508,11 +522,49 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     lo, hi = max(0, lo - n), max(0, hi - n)
     out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], f"a/{label}", f"b/{label}",
                                n=n, lineterm="")
-    if lo:
-        out = (_HUNK.sub(lambda m: f"@@ -{int(m[1]) + lo}{m[2] or ''} "
-                                   f"+{int(m[3]) + lo}{m[4] or ''} @@", line, count=1)
+    shift = top + lo
+    if shift:
+        out = (_HUNK.sub(lambda m: f"@@ -{int(m[1]) + shift}{m[2] or ''} "
+                                   f"+{int(m[3]) + shift}{m[4] or ''} @@", line, count=1)
                if line.startswith("@@") else line for line in out)
-    return "\n".join(out) + ("\n" if new_text != doc.text else "")
+    return "\n".join(out) + ("\n" if new_text != old_text else "")
+
+
+def _common_prefix(a: str, b: str) -> int:
+    """Length of the longest common prefix of a and b: slices compared in C,
+    doubling, then halving."""
+    limit = min(len(a), len(b))
+    lo, step = 0, 4096
+    while lo < limit:
+        hi = min(limit, lo + step)
+        if a[lo:hi] != b[lo:hi]:
+            while hi - lo > 1:          # a[:lo] == b[:lo] and a[lo:hi] != b[lo:hi]
+                mid = (lo + hi) // 2
+                if a[lo:mid] == b[lo:mid]:
+                    lo = mid
+                else:
+                    hi = mid
+            return lo
+        lo, step = hi, step * 2
+    return limit
+
+
+def _common_suffix(a: str, b: str, limit: int) -> int:
+    """Length of the longest common suffix of a and b, at most ``limit``."""
+    na, nb = len(a), len(b)
+    lo, step = 0, 4096
+    while lo < limit:
+        hi = min(limit, lo + step)
+        if a[na - hi:na - lo] != b[nb - hi:nb - lo]:
+            while hi - lo > 1:          # equal over the last lo, not the last hi
+                mid = (lo + hi) // 2
+                if a[na - mid:na - lo] == b[nb - mid:nb - lo]:
+                    lo = mid
+                else:
+                    hi = mid
+            return lo
+        lo, step = hi, step * 2
+    return limit
 
 
 _HUNK = re.compile(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")

@@ -3,21 +3,21 @@
 Two ways through the same grammar:
 
 - ``full=True`` (``ucsio check``): every byte of the file goes through the
-  grammar's LALR table and lexer (ucsio.recognise: Lark's tables without
-  its tree), then the fast path below reads the frames, and every other
+  grammar's LALR table and lexer (ucsio.lalr's recogniser: Lark's tables,
+  no tree), then the fast path below reads the frames, and every other
   declaration is listed from its words (its value parsed only if read).
-  Where the recogniser rejects, ``parse_whole`` (Lark's tree of every byte)
+  Where the recogniser rejects, ``parse_whole`` (the tree of every byte)
   gives the positioned error.
 - the fast path (``ucsio frames``, ``diff``, ``patch``): an outline scanner
   (one regular expression, the same lexical rules as the grammar) walks the
   module's top-level items: comments, routines, records, declarations. Only
   the declarations of frame types are kept; every other character is replaced
-  by a space, and Lark parses that in one call; positions are mapped back
+  by a space, and the grammar parses that in one call; positions are mapped back
   of the original file, so every span points into the real document. A module
-  with 20,000 robtargets thus costs one regex pass, not 20,000 Lark parses.
+  with 20,000 robtargets thus costs one regex pass, not 20,000 parses.
 
 Both paths give the same frames (tests/test_rapid.py checks it on the corpus),
-and ``full=True`` shows what ``parse_whole`` shows (tests/test_recognise.py).
+and ``full=True`` shows what ``parse_whole`` shows (tests/test_lalr.py).
 """
 from __future__ import annotations
 
@@ -30,6 +30,7 @@ from .document import Document, Span
 from .errors import MAX_NESTING, TooDeep, UcsioError
 from .frames import Frame, Number, Pose
 from .grammar import grammar_dir
+from .lalr import Token, Tree
 from .values import Value
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
@@ -191,7 +192,7 @@ def _check_numbers(doc: Document) -> None:
     "12ab") is bad wherever it stands in live code. The regex only finds
     candidates; digits inside names (p10, tool0.tframe) are skipped here.
     This costs a pass over every digit, so only ``check`` runs it on the whole
-    file; the fast path's Lark parse checks the numbers of frame data.
+    file; the fast path's parse checks the numbers of frame data.
 
     Linear on any text: strings and comments are blanked in one pass (not
     looked up per candidate), and a run of digits and dots is judged once,
@@ -240,9 +241,9 @@ def _explain(text: str, pos: int) -> str:
 
 
 class Compact:
-    """Only the regions Lark must see, joined by line breaks (a region may
+    """Only the regions the parser must see, joined by line breaks (a region may
     end in a comment: "MODULE m ! note" must not comment out what follows),
-    and the map from a position in that text back to the file. Lark then
+    and the map from a position in that text back to the file. The parser then
     reads a few kilobytes instead of a module of robtargets; positions are
     mapped back once, so every span in the tree points into the real
     document."""
@@ -266,8 +267,6 @@ class Compact:
         return self.origins[i] + pos - self.starts[i] if i >= 0 else pos
 
     def remap(self, tree) -> None:
-        from lark import Token
-
         for sub in tree.iter_subtrees():
             for tok in sub.children:
                 if isinstance(tok, Token) and tok.start_pos is not None:
@@ -275,20 +274,27 @@ class Compact:
                     tok.end_pos = self(tok.end_pos)
 
 
-# -- Lark -----------------------------------------------------------------------
+# -- the grammar --------------------------------------------------------------------
+START = ("file", "data_decl")
+
+
 def _parser():
     from . import grammar
-    return grammar.parser("rapid", ("file", "data_decl"), positions=False)
+    return grammar.parser("rapid", START)
 
 
 def parse_tree(doc: Document, source: str, locate=lambda pos: pos):
-    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+    from .grammar import SyntaxFailure, parse
 
     try:
-        return _parser().parse(source, start="file")
-    except UnexpectedEOF:
+        return parse("rapid", START, source, "file")
+    except SyntaxFailure as failure:
+        exc = failure.error
+    from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
+
+    if isinstance(exc, UnexpectedEOF):
         raise doc.error("unexpected end of file", len(doc.text)) from None
-    except UnexpectedToken as exc:
+    if isinstance(exc, UnexpectedToken):
         tok = exc.token
         pos = locate(tok.start_pos) if tok.start_pos is not None else len(doc.text)
         if tok.type == "$END":
@@ -296,11 +302,11 @@ def parse_tree(doc: Document, source: str, locate=lambda pos: pos):
         want = sorted(exc.accepts or exc.expected)
         hint = f"; expected {_nice(want)}" if want else ""
         raise doc.error(f"unexpected {str(tok)[:30]!r}{hint}", pos) from None
-    except UnexpectedCharacters as exc:
+    if isinstance(exc, UnexpectedCharacters):
         raise doc.error(f"unexpected character {source[exc.pos_in_stream]!r}",
                         locate(exc.pos_in_stream)) from None
-    except UnexpectedInput as exc:  # pragma: no cover - other Lark errors
-        raise doc.error(str(exc).splitlines()[0], locate(getattr(exc, "pos_in_stream", 0))) from None
+    # pragma: no cover - other Lark errors
+    raise doc.error(str(exc).splitlines()[0], locate(getattr(exc, "pos_in_stream", 0))) from None
 
 
 _PUNCT = {"SEMICOLON": "';'", "COMMA": "','", "RSQB": "']'", "LSQB": "'['", "RBRACE": "'}'",
@@ -353,7 +359,7 @@ class Decl(Value):
 
 class _LazyDecl(Decl):
     """A declaration known from its words; its dims and value are parsed
-    (Lark, start ``data_decl``, over its own text) only when read, as
+    (the grammar, start ``data_decl``, over its own text) only when read, as
     reading a measurement program's robtargets does."""
 
     __slots__ = ()
@@ -362,9 +368,11 @@ class _LazyDecl(Decl):
         if self._converted is None:
             doc = self._doc
             text = doc.text[self.start:self.end]
+            from .grammar import SyntaxFailure, parse
+
             try:
-                tree = _parser().parse(text, start="data_decl")
-            except Exception:   # pragma: no cover - the recogniser accepted the file
+                tree = parse("rapid", START, text, "data_decl")
+            except SyntaxFailure:   # pragma: no cover - the recogniser accepted the file
                 raise doc.error(f"{self.name}: declaration not understood", self.start) from None
             _shift_tokens(tree, self.start)
             self._nodes = _decl_parts(tree)[4:]
@@ -372,8 +380,6 @@ class _LazyDecl(Decl):
 
 
 def _shift_tokens(tree, delta: int) -> None:
-    from lark import Token
-
     for sub in tree.iter_subtrees():
         for tok in sub.children:
             if isinstance(tok, Token) and tok.start_pos is not None:
@@ -404,10 +410,8 @@ def _placeholder_in(v) -> _Placeholder | None:
 
 
 def _value(node, depth: int = 0):
-    """Lark subtree -> Number | bool | str | list | _Expr. Deeper than
+    """Subtree -> Number | bool | str | list | _Expr. Deeper than
     MAX_NESTING raises TooDeep (a clear error, not Python's RecursionError)."""
-    from lark import Token, Tree
-
     if depth > MAX_NESTING:
         raise TooDeep(_extent(node)[0])
     if isinstance(node, Token):
@@ -446,8 +450,6 @@ def _extent(tree) -> tuple[int, int]:
 
 def _edge_token(tree, side: int):
     """The first (side 0) or last (side -1) token under ``tree``."""
-    from lark import Tree
-
     stack = [tree]
     while stack:
         node = stack.pop()
@@ -473,8 +475,6 @@ def _num(text: str) -> float:
 
 
 def declarations(doc: Document, tree) -> list[Decl]:
-    from lark import Tree
-
     out: list[Decl] = []
     for module in tree.children:
         if not isinstance(module, Tree) or module.data != "module":
@@ -492,8 +492,6 @@ def declarations(doc: Document, tree) -> list[Decl]:
 
 def _decl_parts(item) -> tuple:
     """A data_decl node's scope, storage, type, name, dims node, value node."""
-    from lark import Tree
-
     ch = item.children
     i = 0
     scope = None
@@ -747,11 +745,11 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     regions = outline(doc, routines=full)  # structure errors read best from the outline
     if full:
         _check_numbers(doc)
-        from .recognise import Rejected
+        from .lalr import Rejected
         try:
-            _recogniser().check(doc.text)
+            _recognise(doc.text)
         except Rejected:
-            return parse_whole(doc)      # Lark's positioned error (or, were the two to differ, its tree)
+            return parse_whole(doc)      # the positioned error (or, were the two to differ, the tree)
     frame_regions = [r for r in regions if r.kind not in ("decls", "routine")]
     compact = Compact(doc, frame_regions)
     try:
@@ -767,9 +765,9 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
 
 
 def parse_whole(doc: Document) -> ControllerFile:
-    """``parse(doc, full=True)`` with Lark building the tree of every byte:
-    the reference the recogniser is tested against, and the way to the
-    exact message when it rejects a file."""
+    """``parse(doc, full=True)`` from the tree of every byte (ucsio.lalr
+    shaped as Lark shapes it): the reference the recogniser is tested
+    against, and the way to the exact message when it rejects a file."""
     outline(doc)
     _check_numbers(doc)
     return _interpret(doc, declarations(doc, parse_tree(doc, doc.text)))
@@ -783,26 +781,27 @@ def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
 
 
 # -- check: the recogniser and the declarations the fast path leaves out -----------
-def _recogniser():
-    global _RECOGNISER
-    if _RECOGNISER is None:
-        from .recognise import atomic, bracketed, build, terminal_pattern
+def _recognise(text: str) -> None:
+    """Every byte through the grammar (ucsio.lalr.Parser.recognise); Rejected if not RAPID."""
+    global _SHORTCUTS
+    parser = _parser()
+    if _SHORTCUTS is None:
+        from .lalr import atomic, bracketed
 
-        lark = _parser()
-        tp = functools.partial(terminal_pattern, lark)
-        gap = f"(?:{atomic(tp('WS'))}|{atomic(tp('COMMENT'))})*+"
+        tp = parser.terminals
+        gap = f"(?:{atomic(tp['WS'])}|{atomic(tp['COMMENT'])})*+"
         # a literal number (signs are unary operators), string or boolean
-        element = (f"(?:[+-]{gap})*+{atomic(tp('NUMBER'))}|{atomic(tp('STRING'))}"
-                   f"|{atomic(tp('BOOL'))}")
+        element = (f"(?:[+-]{gap})*+{atomic(tp['NUMBER'])}|{atomic(tp['STRING'])}"
+                   f"|{atomic(tp['BOOL'])}")
         aggregate = bracketed(r"\[", r"\]", element, gap)
         for _ in range(3):          # robtarget arrays: [[[x, y, z], [q1, ...], ...], ...]
             aggregate = bracketed(r"\[", r"\]", f"{aggregate}|{element}", gap)
         # atom: NUMBER | aggregate: the parser moves on alike after either
-        _RECOGNISER = build(lark, "file", shortcuts={"LSQB": (re.compile(aggregate), "NUMBER")})
-    return _RECOGNISER
+        _SHORTCUTS = {"LSQB": (re.compile(aggregate), "NUMBER")}
+    parser.recognise(text, "file", _SHORTCUTS)
 
 
-_RECOGNISER = None
+_SHORTCUTS = None
 # one declaration at the head of a run the outline found (`decls`): its words
 _DECL_WORDS = re.compile(
     r"(?:\s++|![^\r\n]*+)*+(?P<decl>(?:(?P<scope>LOCAL|TASK)" + _GAP + r")?(?P<storage>PERS|CONST|VAR)"

@@ -30,6 +30,7 @@ from ..controller import ABB_SUFFIXES, ControllerFile
 from ..document import Document, Span
 from ..errors import UcsioError
 from ..frames import Frame, Number
+from ..lalr import Rejected, Token, Tree
 from ..rotations import quat_to_matrix, matvec
 from . import Found, TaughtPoint, files_around, is_same_file, same_folder
 
@@ -175,19 +176,17 @@ def _read_module(doc: Document) -> _Module:
 
 def _statement_parser():
     from ..grammar import parser
-    return parser("rapid", ("statements",), positions=False)
+    return parser("rapid", ("statements",))
 
 
 def _parse_statements(doc: Document, regions) -> list:
     """Every statement's tree, with positions in the file: one Lark call for
     all of them; where that fails, one call each, so the error names the
     statement."""
-    from lark.exceptions import LarkError
-
     compact = rapid.Compact(doc, regions)
     try:
-        tree = _statement_parser().parse(compact.text, start="statements")
-    except LarkError:
+        tree = _statement_parser().parse(compact.text, "statements")
+    except Rejected:
         tree = None
     if tree is not None:
         compact.remap(tree)
@@ -196,8 +195,8 @@ def _parse_statements(doc: Document, regions) -> list:
     for r in regions:
         one = rapid.Compact(doc, [r])
         try:
-            t = _statement_parser().parse(one.text, start="statements")
-        except LarkError:
+            t = _statement_parser().parse(one.text, "statements")
+        except Rejected:
             out.append((None, r.span))
             continue
         one.remap(t)
@@ -208,8 +207,6 @@ def _parse_statements(doc: Document, regions) -> list:
 def _text(node) -> str:
     """A name, element or component as written, without spaces: 'p10',
     'wobjs{2}', 'targets{i,2}', 'rec.p' (the tree drops the brackets)."""
-    from lark import Token
-
     if isinstance(node, Token):
         return str(node)
     if node.data == "element":
@@ -336,8 +333,6 @@ def _moving_in(statement, wobj: str):
     r"""The instruction of a statement that moves in work object ``wobj``
     (casefolded), else None (an assignment such as p := CRobT(\WObj:=w)
     reads a position, it does not move)."""
-    from lark import Tree
-
     instr = next((c for c in statement.children if isinstance(c, Tree)
                   and c.data == "instruction"), None)
     if instr is None:
@@ -351,8 +346,6 @@ def _moving_in(statement, wobj: str):
 
 def _names_moved_to(statement, wobj: str) -> list:
     """Every name in the arguments of an instruction moving in ``wobj``."""
-    from lark import Token, Tree
-
     instr = _moving_in(statement, wobj)
     if instr is None:
         return []
@@ -361,8 +354,6 @@ def _names_moved_to(statement, wobj: str) -> list:
 
 
 def _points_of(statement, mod: _Module, index: _Index, wobj: str, found: Found, seen: set):
-    from lark import Tree
-
     instr = _moving_in(statement, wobj)
     if instr is None:
         return
@@ -382,8 +373,6 @@ def _points_of(statement, mod: _Module, index: _Index, wobj: str, found: Found, 
 
 def _not_counted(node, mod: _Module, index: _Index, found: Found, seen: set) -> None:
     """Say why the target of a cartesian move is not counted (once per name)."""
-    from lark import Token, Tree
-
     if not (isinstance(node, Tree) and node.data in ("name", "element", "call")):
         return
     doc = mod.doc
@@ -410,8 +399,6 @@ def _not_counted(node, mod: _Module, index: _Index, found: Found, seen: set) -> 
 
 def _resolve(node, mod: _Module, index: _Index, doc: Document):
     """(dedup key, TaughtPoint) for an argument that is a robtarget, else None."""
-    from lark import Token, Tree
-
     if not isinstance(node, Tree):
         return None
     kind = node.data

@@ -1,66 +1,78 @@
-"""The recogniser ``check`` puts every byte through (ucsio.recognise): it
-accepts exactly the files Lark's parser accepts, with its literal shortcuts
-and without them, and ``check`` built on it shows exactly what Lark's tree of
-every byte shows (``parse_whole``). tests/fuzzing.py's oracle checks the
-second on every mutated and generated file of tests/test_fuzz.py too."""
+"""ucsio.lalr, the grammars' run-time parser: it reads Lark's tables and must
+do what Lark does. Its trees are Lark's trees, token for token; it accepts
+and rejects what Lark accepts and rejects, recognising (``check``) with its
+literal shortcuts and without them; ``check`` built on it shows exactly
+what the tree of every byte shows (``parse_whole``). tests/fuzzing.py's
+oracle checks the last on every mutated and generated file of
+tests/test_fuzz.py, and the tree against Lark's."""
 from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import fuzzing
-from conftest import corpus_files
-from ucsio import krl, rapid
+from fuzzing import lark_tree, same_tree
+from conftest import FIXTURES, corpus_files
+from ucsio import grammar, krl, lalr, rapid
 from ucsio.controller import parse
 from ucsio.document import Document
 from ucsio.errors import UcsioError
-from ucsio.recognise import Recogniser, Rejected, noncapturing
+from ucsio.lalr import Rejected, noncapturing
 
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow])
 
 
-def lark_accepts(module, text: str) -> bool:
-    from lark.exceptions import LarkError
-
+def ours(module, text: str, start: str = "file"):
     try:
-        module._parser().parse(text, start="file")
-        return True
-    except LarkError:
-        return False
+        return module._parser().parse(text, start)
+    except Rejected:
+        return None
 
 
-def accepts(recogniser, text: str) -> bool:
+def recognised(module, text: str, **kw) -> bool:
     try:
-        recogniser.check(text)
+        module._parser().recognise(text, "file", **kw)
         return True
     except Rejected:
         return False
 
 
-def plain(module):
-    """The same grammar's recogniser without shortcuts or suspects."""
-    return Recogniser(module._parser(), "file")
+def shortcut_recognised(module, text: str) -> bool:
+    try:
+        module._recognise(text)
+        return True
+    except Rejected:
+        return False
 
 
 def agree(module, text: str) -> None:
-    want = lark_accepts(module, text)
-    assert accepts(plain(module), text) == want, text
-    got = accepts(module._recogniser(), text)
-    # a suspect token may reject what Lark accepts (check then asks Lark);
-    # accepting what Lark rejects is never allowed
-    assert got == want or (want and not got and module is krl), text
+    """Lark's verdict and tree, ours: by parse, by recognise, with shortcuts."""
+    want = lark_tree(module, text)
+    got = ours(module, text)
+    assert (got is None) == (want is None), text
+    if want is not None:
+        assert same_tree(got, want), text
+    assert recognised(module, text) == (want is not None), text
+    # a suspect token may reject what Lark accepts (check then reads the
+    # whole tree); accepting what Lark rejects is never allowed
+    short = shortcut_recognised(module, text)
+    assert short == (want is not None) or (want is not None and module is krl), text
 
 
 @pytest.mark.parametrize("path", corpus_files("abb") + corpus_files("kuka"))
-def test_corpus_recognised_as_lark_parses_and_check_shows_the_same(path):
+def test_corpus_trees_are_lark_s_and_check_shows_the_same(path):
     doc = Document.read(path)
     module = rapid if path.parent.name == "abb" else krl
     text = krl._lines(doc) if module is krl else doc.text
-    assert lark_accepts(module, text)
-    module._recogniser().check(text)
-    plain(module).check(text)
+    assert same_tree(ours(module, text), lark_tree(module, text))
+    module._recognise(text)
     full, err = fuzzing._parse(doc, full=True)
     fuzzing.same_as_whole_tree(doc, full, err)
     assert full is not None
@@ -71,9 +83,7 @@ def test_a_literal_stands_where_a_number_may(module, trigger):
     """The shortcut feeds a literal as one NUMBER: every state that can
     begin the literal can take a NUMBER (what follows both is the soups'
     and the fuzzing's to show)."""
-    recogniser = module._recogniser()
-    assert isinstance(recogniser, Recogniser), "this Lark's internals are not what ucsio reads"
-    rows = recogniser.actions
+    rows = dict(enumerate(module._parser().actions))
     starts = [state for state, row in rows.items() if trigger in row]
     assert starts
     assert all("NUMBER" in rows[state] for state in starts)
@@ -171,13 +181,85 @@ def test_other_declarations_listed_with_their_values_on_demand():
     assert target.pose.t == pytest.approx((1, 2, 3))
 
 
-def test_a_lark_without_the_internals_sends_every_file_to_lark():
-    from ucsio.recognise import LarkOnly, build
-
-    assert isinstance(build(object(), "file"), LarkOnly)
-    with pytest.raises(Rejected):
-        LarkOnly().check("MODULE m\nENDMODULE\n")
-
-
 def test_noncapturing_keeps_classes_and_escapes():
     assert noncapturing(r"(\d+(\.\d*)?)[(]\((?i:a)") == r"(?:\d+(?:\.\d*)?)[(]\((?i:a)"
+
+
+STATEMENTS = [
+    "MoveL p10, v100, z10, tool1\\WObj:=wobj1;",
+    "IF a > 1 THEN MoveJ Offs(p1, 0, 0, 10), v1000, fine, tool0 \\WObj:=w{2};",
+    "FOR i FROM 1 TO 3 DO MoveL *, v100, z1, t\\WObj:=wobjs{i,2};",
+    "lbl: MoveC p.a, p.b, v10, z1, t\\WObj:=w;", "x := [1, -2, 3];", "MoveL p10 v100;",
+]
+
+
+@pytest.mark.parametrize("text", STATEMENTS)
+def test_statement_trees_are_lark_s(text):
+    """The `statements` start symbol (diff --points) has its own tables."""
+    ours_ = grammar.parser("rapid", ("statements",))
+    theirs = grammar.lark_parser("rapid", ("statements",))
+    from lark.exceptions import LarkError
+
+    try:
+        want = theirs.parse(text, start="statements")
+    except LarkError:
+        want = None
+    try:
+        got = ours_.parse(text, "statements")
+    except Rejected:
+        got = None
+    assert (got is None) == (want is None)
+    assert want is None or same_tree(got, want)
+
+
+def test_a_rejected_text_gets_lark_s_exception():
+    text = "DEFDAT d\nDECL E6POS p={X 1\nENDDAT\n"
+    with pytest.raises(grammar.SyntaxFailure) as failure:
+        grammar.parse("krl", krl.START, text, "file")
+    from lark.exceptions import UnexpectedToken
+
+    assert isinstance(failure.value.error, UnexpectedToken)
+    assert failure.value.error.token.start_pos == text.index("\nENDDAT")
+
+
+def test_tables_cached_on_disk_rebuilt_when_damaged_and_optional(tmp_path, monkeypatch):
+    monkeypatch.setenv("UCSIO_CACHE_DIR", str(tmp_path / "cache"))
+    first = grammar.tables("krl", krl.START)
+    (path,) = (tmp_path / "cache").iterdir()
+    assert json.loads(path.read_bytes()) == first
+    path.write_bytes(b"{not json")
+    assert grammar.tables("krl", krl.START) == first           # rebuilt
+    assert json.loads(path.read_bytes()) == first               # and rewritten
+    blocked = tmp_path / "file"
+    blocked.write_text("")
+    monkeypatch.setenv("UCSIO_CACHE_DIR", str(blocked / "sub"))   # cannot be created
+    assert grammar.tables("krl", krl.START) == first
+
+
+PROBE = """
+import sys, io, contextlib
+from ucsio.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    code = main(sys.argv[1:])
+print("lark" in sys.modules)
+"""
+
+
+def test_reading_a_file_does_not_import_lark(tmp_path):
+    """With the tables cached, frames/diff/patch/check of good files never
+    import Lark; the first run of a new grammar builds the cache with it."""
+    env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"frame": {"x": 101, "y": 200, "z": 300, "a": 0, "b": 0, "c": 0}}))
+    mod = FIXTURES / "abb" / "two_modules_crcrlf.prg"
+    dat = FIXTURES / "kuka" / "cell_config.dat"
+    runs = [["frames", mod], ["frames", mod], ["frames", dat], ["check", mod, dat],
+            ["diff", mod, "--frame", "wobjA", "--measured", sol],
+            ["patch", dat, "--frame", "BASE_DATA[1]", "--measured", sol]]
+    seen = []
+    for args in runs:
+        out = subprocess.run([sys.executable, "-c", PROBE, *map(str, args)], env=env,
+                             capture_output=True, text=True)
+        seen.append(out.stdout.strip().splitlines()[-1] if out.stdout.strip() else out.stderr)
+    assert seen[0] == "True"            # cold cache: Lark builds the RAPID tables
+    assert seen[1:] == ["False", "True", "False", "False", "False"], seen  # KRL's, once

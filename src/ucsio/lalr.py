@@ -1,0 +1,355 @@
+"""The grammars' parsers at run time: Lark's LALR tables, driven by a small loop.
+
+Lark compiles grammars/*.lark: its LALR analysis gives the parse table, its
+contextual lexer a regular expression per parser state, and its tree
+builder the shape of each rule's node (which tokens are kept, which
+``_rule`` children are spliced in, which ``?rule`` nodes stand for their
+only child). ``tables_from_lark`` copies exactly that into plain data, which
+ucsio.grammar caches on disk; this module reads it without importing Lark
+(a command that reads one file starts in a blink), and drives it two ways:
+
+- ``parse``: tokens and a tree shaped as Lark shapes it (Tree.data,
+  .children; Token, a str with .type, .value, .start_pos, .end_pos);
+- ``recognise`` (``check``): the same moves keeping only the state stack, no
+  token or node made; a literal robtarget/E6POS value can be fed as one
+  NUMBER (``shortcuts``, see ucsio.rapid and ucsio.krl).
+
+Either says only *whether* a text is in the language: on rejection the
+caller asks Lark itself for the positioned error (ucsio.grammar), so
+messages stay Lark's. tests/test_lalr.py checks that trees, acceptance and
+rejection are Lark's, on the corpus and on generated and mutated files.
+"""
+from __future__ import annotations
+
+import re
+
+FORMAT = 1          # bump when the shape of the tables changes (the disk cache keys on it)
+
+
+class Rejected(Exception):
+    """The text is not in the language (or a token needs a closer look)."""
+
+    def __init__(self, pos: int):
+        super().__init__(pos)
+        self.pos = pos
+
+
+class Token(str):
+    """A token: its text (the str), terminal name, and offsets in the text parsed."""
+
+    def __new__(cls, type_: str, value: str, start_pos: int, end_pos: int):
+        self = str.__new__(cls, value)
+        self.type = type_
+        self.value = value
+        self.start_pos = start_pos
+        self.end_pos = end_pos
+        return self
+
+    def __reduce__(self):
+        return Token, (self.type, self.value, self.start_pos, self.end_pos)
+
+    def __repr__(self) -> str:
+        return f"Token({self.type!r}, {self.value!r})"
+
+
+class Tree:
+    """A rule's node: ``data`` the rule (or alias) name, ``children`` the
+    kept tokens and subtrees."""
+
+    __slots__ = ("data", "children")
+
+    def __init__(self, data: str, children: list):
+        self.data = data
+        self.children = children
+
+    def __repr__(self) -> str:
+        return f"Tree({self.data!r}, {self.children!r})"
+
+    def iter_subtrees(self):
+        """Every node of the tree (this one too); no recursion, any depth."""
+        stack = [self]
+        while stack:
+            node = stack.pop()
+            yield node
+            stack.extend(c for c in node.children if isinstance(c, Tree))
+
+    def scan_values(self, pred):
+        """The tokens below this node, left to right, for which ``pred`` holds."""
+        stack = [self]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, Tree):
+                stack.extend(reversed(node.children))
+            elif pred(node):
+                yield node
+
+
+# -- the tables, from Lark (ucsio.grammar calls this when its cache is cold) -----------
+def tables_from_lark(lark) -> dict:
+    """Plain data (dicts, lists, strings, ints: marshal-able) with everything
+    a Parser needs, read from a Lark object built with parser="lalr",
+    lexer="contextual", maybe_placeholders=False."""
+    from lark.parse_tree_builder import _should_expand
+    from lark.parsers.lalr_analysis import Shift
+
+    frontend = lark.parser
+    table = frontend.parser._parse_table
+    rule_index: dict = {}
+    states = []
+    for state in range(len(table.states)):
+        row = {}
+        for sym, (action, arg) in table.states[state].items():
+            row[sym] = arg if action is Shift else ~rule_index.setdefault(arg, len(rule_index))
+        states.append(row)
+    rules = [None] * len(rule_index)
+    for rule, i in rule_index.items():
+        opts = rule.options
+        keep = [(k, _should_expand(sym)) for k, sym in enumerate(rule.expansion)
+                if opts.keep_all_tokens or not (sym.is_term and sym.filter_out)]
+        plain = len(keep) == len(rule.expansion) and not any(x for _, x in keep)
+        rules[i] = (len(rule.expansion), rule.origin.name,
+                    rule.alias or opts.template_source or rule.origin.name,
+                    bool(opts.expand1 and not rule.alias),
+                    None if plain else [[k, x] for k, x in keep])
+    lexers: list = []
+    lexer_of: list = []
+    seen: dict[int, int] = {}
+    for state in range(len(table.states)):
+        lexer = frontend.lexer.lexers[state]
+        if id(lexer) not in seen:
+            seen[id(lexer)] = len(lexers)
+            scanner = lexer.scanner         # built on first use
+            if len(scanner._mres) != 1:     # pragma: no cover - over 100 terminals in one state
+                raise ValueError("a lexer state needs more than one regular expression")
+            keywords = {t: [(s.pattern, s.flags) for s in cb.scanner._mres]
+                        for t, cb in lexer.callback.items()}
+            lexers.append((scanner._mres[0].pattern, scanner._mres[0].flags,
+                           sorted(lexer.ignore_types), keywords))
+        lexer_of.append(seen[id(lexer)])
+    return {"format": FORMAT, "states": states, "rules": rules, "lexers": lexers,
+            "lexer_of": lexer_of, "start": dict(table.start_states),
+            "end": dict(table.end_states),
+            "terminals": {t.name: t.pattern.to_regexp() for t in lark.terminals}}
+
+
+# -- the run-time parser ------------------------------------------------------------
+class Parser:
+    """One grammar's tables, for any of its start symbols."""
+
+    def __init__(self, tables: dict):
+        if tables.get("format") != FORMAT:
+            raise ValueError("tables of another format")
+        self.actions: list[dict[str, int]] = tables["states"]
+        self.rules = [(size, origin) for size, origin, *_ in tables["rules"]]
+        self.builders = [_builder(name, expand1, keep) for _, _, name, expand1, keep in tables["rules"]]
+        self._lexer_specs = tables["lexers"]
+        self._lexer_of = tables["lexer_of"]
+        self._compiled: list = [None] * len(self._lexer_specs)
+        # lexers[state]: (match, ignored terminals, keyword retyping), filled
+        # the first time the state lexes (a short file visits a few states)
+        self.lexers: list = [None] * len(self.actions)
+        self.start_states = tables["start"]
+        self.end_states = tables["end"]
+        self.terminals: dict[str, str] = tables["terminals"]
+
+    def _lexer(self, state: int):
+        i = self._lexer_of[state]
+        got = self._compiled[i]
+        if got is None:
+            pattern, flags, ignore, keywords = self._lexer_specs[i]
+            kw = {t: _fullmatcher(specs) for t, specs in keywords.items()}
+            got = self._compiled[i] = (re.compile(pattern, flags).match, frozenset(ignore), kw)
+        self.lexers[state] = got
+        return got
+
+    def parse(self, text: str, start: str) -> Tree:
+        """The tree of ``text``, as Lark shapes it; Rejected(pos) if ``text``
+        is not in the language."""
+        actions, rules, builders, lexers = self.actions, self.rules, self.builders, self.lexers
+        state = self.start_states[start]
+        states = [state]
+        values: list = []
+        push, keep = states.append, values.append
+        pos = 0
+        n = len(text)
+        kind = None
+        while True:
+            if pos < n:
+                match, ignore, keywords = lexers[state] or self._lexer(state)
+                m = match(text, pos)
+                if m is None:
+                    raise Rejected(pos)
+                kind = m.lastgroup
+                end = m.end()
+                if kind in ignore:
+                    pos = end
+                    continue
+                value = m.group()
+                if keywords and kind in keywords:
+                    kind = keywords[kind](value) or kind
+                token = Token(kind, value, pos, end)
+                pos = end
+            else:
+                kind = "$END"
+                token = None
+            row = actions[state]
+            while True:
+                act = row.get(kind)
+                if act is None:
+                    raise Rejected(token.start_pos if token is not None else n)
+                if act >= 0:
+                    if token is None:
+                        raise Rejected(n)
+                    state = act
+                    push(act)
+                    keep(token)
+                    break
+                size, origin = rules[~act]
+                if size:
+                    children = values[-size:]
+                    del states[-size:]
+                    del values[-size:]
+                else:
+                    children = []
+                node = builders[~act](children)
+                state = actions[states[-1]][origin]
+                if token is None and state == self.end_states[start]:
+                    return node
+                push(state)
+                keep(node)
+                row = actions[state]
+
+    def recognise(self, text: str, start: str, shortcuts: dict | None = None,
+                  suspects: dict | None = None) -> None:
+        """Return if ``text`` is in the language, else raise Rejected: the
+        moves of ``parse`` with only the state stack kept.
+
+        ``shortcuts``: {terminal: (compiled regex, terminal fed instead)},
+        tried where the lexer reads ``terminal`` and the parser can take it.
+        ``suspects``: {terminal: predicate(text)}: a token for which the
+        predicate holds rejects (the caller's full parse looks at it)."""
+        actions, rules, lexers = self.actions, self.rules, self.lexers
+        shortcuts, suspects = shortcuts or {}, suspects or {}
+        state = self.start_states[start]
+        stack = [state]
+        push = stack.append
+        pos = 0
+        n = len(text)
+        while pos < n:
+            match, ignore, keywords = lexers[state] or self._lexer(state)
+            m = match(text, pos)
+            if m is None:
+                raise Rejected(pos)
+            kind = m.lastgroup
+            end = m.end()
+            if kind in ignore:
+                pos = end
+                continue
+            if keywords and kind in keywords:
+                kind = keywords[kind](m.group()) or kind
+            row = actions[state]
+            if kind in shortcuts and kind in row:
+                pattern, instead = shortcuts[kind]
+                whole = pattern.match(text, pos)
+                if whole is not None:
+                    kind, end = instead, whole.end()
+            elif kind in suspects and suspects[kind](m.group()):
+                raise Rejected(pos)
+            token_pos, pos = pos, end
+            while True:
+                act = row.get(kind)
+                if act is None:
+                    raise Rejected(token_pos)
+                if act >= 0:
+                    state = act
+                    push(act)
+                    break
+                size, origin = rules[~act]
+                if size:
+                    del stack[-size:]
+                state = actions[stack[-1]][origin]
+                push(state)
+                row = actions[state]
+        end_state = self.end_states[start]
+        while True:     # end of input: reduce until the start symbol is complete
+            act = actions[state].get("$END")
+            if act is None or act >= 0:
+                raise Rejected(n)
+            size, origin = rules[~act]
+            if size:
+                del stack[-size:]
+            state = actions[stack[-1]][origin]
+            push(state)
+            if state == end_state:
+                return
+
+
+def _fullmatcher(specs):
+    """Lark's keyword callback: a NAME spelt as a keyword becomes it."""
+    compiled = [re.compile(p, f) for p, f in specs]
+
+    def retype(value: str):
+        for c in compiled:
+            m = c.fullmatch(value)
+            if m:
+                return m.lastgroup
+        return None
+    return retype
+
+
+def _builder(name: str, expand1: bool, keep):
+    """A rule's node builder, as Lark's tree builder shapes it: the kept
+    children (anonymous tokens dropped, ``_rule`` nodes spliced in), and a
+    ``?rule`` with one child stands for that child."""
+    if keep is None:
+        if expand1:
+            return lambda children: children[0] if len(children) == 1 else Tree(name, children)
+        return lambda children: Tree(name, children)
+    keep = [(k, bool(x)) for k, x in keep]
+
+    def build(children):
+        out = []
+        for k, splice in keep:
+            if splice:
+                out += children[k].children
+            else:
+                out.append(children[k])
+        if expand1 and len(out) == 1:
+            return out[0]
+        return Tree(name, out)
+    return build
+
+
+# -- shortcut patterns ---------------------------------------------------------------
+def atomic(pattern: str) -> str:
+    """A token's pattern as an atomic group: matched as the lexer matches it,
+    never given back to let a longer pattern around it succeed. Its groups
+    are made non-capturing: nothing reads them, and CPython 3.11's re
+    reports "The span of capturing group is wrong" for capturing groups
+    inside possessive repeats."""
+    return f"(?>{noncapturing(pattern)})"
+
+
+def noncapturing(pattern: str) -> str:
+    """``pattern`` with every capturing group ``(`` turned into ``(?:``."""
+    out = []
+    escaped = in_class = False
+    for i, c in enumerate(pattern):
+        out.append(c)
+        if escaped:
+            escaped = False
+        elif c == "\\":
+            escaped = True
+        elif in_class:
+            in_class = c != "]" or pattern[i - 1] == "["
+        elif c == "[":
+            in_class = True
+        elif c == "(" and not pattern.startswith("?", i + 1):
+            out.append("?:")
+    return "".join(out)
+
+
+def bracketed(open_: str, close: str, item: str, gap: str) -> str:
+    """``open [item (, item)*] close`` with ``gap`` (ignored text) between
+    tokens; possessive, so a literal that does not close fails at once."""
+    return f"{open_}{gap}(?:(?:{item})(?:{gap},{gap}(?:{item}))*+)?+{gap}{close}"
