@@ -470,6 +470,12 @@ class PatchResult(Value):
         self.warnings = [] if warnings is None else warnings
         self.written, self.backup = written, backup
 
+    def with_changes(self, **fields) -> "PatchResult":
+        """A copy with these fields replaced (LibCST's name for it)."""
+        values = {k: getattr(self, k) for k in self.__slots__}
+        values.update(fields)
+        return PatchResult(**values)
+
     @property
     def old_bytes(self) -> bytes:
         return self.document.raw

@@ -124,16 +124,14 @@ def _with_tcp(cf, result, tool: str, tcp):
     """The frame's patch and the solved TCP's, as one patch of the file: the
     TCP goes into the frame-patched text, and the result replaces the
     original's bytes (what ``save`` checks against the file on disk)."""
-    from dataclasses import replace
-
     from ..controller import parse
     from ..document import Document
     from ..patch import patch_tcp
 
     again = parse(Document(result.new_bytes, cf.path))
     tool_patch = patch_tcp(again, tool, tcp, check_siblings=False)
-    return replace(result, new_bytes=tool_patch.new_bytes,
-                   changes=result.changes + tool_patch.changes)
+    return result.with_changes(new_bytes=tool_patch.new_bytes,
+                               changes=result.changes + tool_patch.changes)
 
 
 def _mkdir(folder: Path) -> None:
