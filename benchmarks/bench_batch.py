@@ -19,7 +19,7 @@ wall time for the subprocess):
   sets in ONE ``horn_batch`` call (no leave-one-out, no exclusion, no diff,
   no output).
 - baseline, 1 call: that ``horn_batch`` call alone, on arrays already in memory.
-- for scale: ``ucsio.solve.solve`` entry by entry on the first 1,000 entries
+- for scale: ``ucsio.method.solve.solve`` entry by entry on the first 1,000 entries
   (the loop batch replaces), extrapolated.
 - linearity: batch (in process) on a fleet a tenth the size, per entry.
 
@@ -77,11 +77,11 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from ucsio import horn
-    from ucsio.batch import read_manifest
+    from ucsio.method import horn
+    from ucsio.fleet.batch import read_manifest
     from ucsio.cli import main as cli_main
-    from ucsio.controller import load
-    from ucsio.measurement import read_measurement
+    from ucsio.parsing.controller import load
+    from ucsio.method.measurement import read_measurement
 
     n = args.entries
     with contextlib.ExitStack() as stack:
@@ -113,7 +113,7 @@ def main(argv=None) -> int:
 
         def read_all():
             """Every file batch reads, read once, and the point sets."""
-            from ucsio.frames import tool_tcp
+            from ucsio.geometry.frames import tool_tcp
             mf = read_manifest(manifest)
             files = {p: load(p) for p in controllers}
             sets = []
@@ -147,7 +147,7 @@ def main(argv=None) -> int:
         n_loop = min(1000, n)
 
         def per_entry():
-            from ucsio import solve
+            from ucsio.method import solve
             for e in m.entries[:n_loop]:
                 meas = read_measurement(e.measurement)
                 solve.solve(meas, e.tcp if e.tool is None else (0.0, 0.0, 0.0),
@@ -170,7 +170,7 @@ def main(argv=None) -> int:
             ("ucsio batch --json (subprocess, wall clock)", t_sub, n),
             ("baseline: read all files + 1 horn_batch call", t_read_fit, n),
             ("baseline: 1 horn_batch call (arrays in memory)", t_fit, n),
-            (f"for scale: ucsio.solve.solve per entry (x{n // n_loop})", t_loop, n),
+            (f"for scale: ucsio.method.solve.solve per entry (x{n // n_loop})", t_loop, n),
             (f"ucsio batch --json, {n_small:,} entries (in process)", t_small, n_small)]
     width = max(len(r[0]) for r in rows)
     print()

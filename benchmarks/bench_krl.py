@@ -24,6 +24,7 @@ from pathlib import Path
 TARGET = 1.5
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "src"))   # this checkout's ucsio
 from coldstart import alternate  # noqa: E402
 
 DEFAULT = (HERE.parents[1] / "shared" / "corpus" / "kuka"
@@ -45,8 +46,8 @@ def main(argv=None) -> int:
     ma, mb = alternate(numpy_cmd, ucsio_cmd, args.runs)
 
     # in-process, for information: the parse alone (parser already loaded)
-    from ucsio import krl
-    from ucsio.document import Document
+    from ucsio.parsing import krl
+    from ucsio.parsing.document import Document
     doc = Document.read(path)
     krl.parse(doc)
     t0 = time.perf_counter()

@@ -20,8 +20,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src"))
 
-from ucsio.controller import parse  # noqa: E402
-from ucsio.document import Document  # noqa: E402
+from ucsio.parsing.controller import parse  # noqa: E402
+from ucsio.parsing.document import Document  # noqa: E402
 from ucsio.errors import UcsioError  # noqa: E402
 
 WOBJ = 'PERS wobjdata w{i}:=[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
@@ -101,8 +101,8 @@ def run_commands(name: str, text: str) -> None:
     """What frames, check and patch do with the file: the fast path, the
     full parse with its round trip, and a patch plan of the first frame."""
     from ucsio.commands.check import round_trip
-    from ucsio.frames import Pose
-    from ucsio.patch import patch_frame
+    from ucsio.geometry.frames import Pose
+    from ucsio.review.patch import patch_frame
 
     raw = text.encode("utf-8")
     for full in (False, True):

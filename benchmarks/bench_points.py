@@ -28,9 +28,9 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "src"))
 from make_big_module import big_module  # noqa: E402
 
-from ucsio import rapid  # noqa: E402
-from ucsio.document import Document  # noqa: E402
-from ucsio.frames import Pose  # noqa: E402
+from ucsio.parsing import rapid  # noqa: E402
+from ucsio.parsing.document import Document  # noqa: E402
+from ucsio.geometry.frames import Pose  # noqa: E402
 from ucsio.taught import find_points, points_moved  # noqa: E402
 
 

@@ -14,14 +14,14 @@ Target: >= 100x.
 Memory: the peak resident memory (``/usr/bin/time -v``) of a process that
 loads --memory-sets eight-point sets from .npy files and solves them in one
 ``horn_batch`` call, less that of a process that only starts Python and
-imports ucsio.horn, against the size of the two input arrays. Target: <= 2
+imports ucsio.method.horn, against the size of the two input arrays. Target: <= 2
 (the inputs themselves count once, the outputs and the work the rest).
 
 Leave-one-out: one set of --loo-points points (100,000), every point against
 the fit of the others, against one fit of all of them; and a set of 10,000
 collinear points, refused.
 
-Also times ``ucsio.solve.uncertainty`` with 10,000 Monte Carlo samples of an
+Also times ``ucsio.method.solve.uncertainty`` with 10,000 Monte Carlo samples of an
 eight-point set (the shipped example kuka_base3.csv).
 """
 from __future__ import annotations
@@ -41,12 +41,14 @@ import numpy as np
 import scipy
 from scipy.spatial.transform import Rotation
 
-from ucsio import horn
-from ucsio.measurement import read_measurement
-from ucsio.errors import UcsioError
-from ucsio.solve import solve_points, uncertainty
-
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "src"))   # this checkout's ucsio, not an installed one
+
+from ucsio.errors import UcsioError  # noqa: E402
+from ucsio.method import horn  # noqa: E402
+from ucsio.method.measurement import read_measurement  # noqa: E402
+from ucsio.method.solve import solve_points, uncertainty  # noqa: E402
+
 
 
 def make_sets(n_sets: int, n_points: int = 8, seed: int = 0):
@@ -87,9 +89,9 @@ def memory(n_sets: int) -> None:
         np.save(Path(tmp) / "l.npy", laser)
         np.save(Path(tmp) / "r.npy", robot)
         del laser, robot
-        load = (f"import numpy as np; from ucsio import horn; "
+        load = (f"import numpy as np; from ucsio.method import horn; "
                 f"l = np.load({str(Path(tmp) / 'l.npy')!r}); r = np.load({str(Path(tmp) / 'r.npy')!r})")
-        bare = peak_rss_mb("import numpy as np; from ucsio import horn")
+        bare = peak_rss_mb("import numpy as np; from ucsio.method import horn")
         loaded = peak_rss_mb(load)
         solved = peak_rss_mb(load + "; res = horn.horn_batch(l, r); assert res.ok.all()")
     peak = solved - bare

@@ -15,10 +15,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
+sys.path[:0] = [str(ROOT / "src"), str(ROOT / "tests")]   # this checkout's ucsio
 
 from test_quat_writer import MAX_ANGLE_DEG, TINY, orientations, patch_everywhere  # noqa: E402
-from ucsio.patch import QUAT_NORM_MAX  # noqa: E402
+from ucsio.review.patch import QUAT_NORM_MAX  # noqa: E402
 
 
 def main() -> int:

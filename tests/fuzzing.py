@@ -25,14 +25,14 @@ import random
 from pathlib import Path
 
 from oracles import only_numbers_changed
-from ucsio import grammar
-from ucsio import lalr
-from ucsio import rotations as rot
-from ucsio.controller import parse
-from ucsio.document import Document
+from ucsio.parsing import grammar
+from ucsio.parsing import lalr
+from ucsio.geometry import rotations as rot
+from ucsio.parsing.controller import parse
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
-from ucsio.frames import Pose
-from ucsio.lalr import Rejected
+from ucsio.geometry.frames import Pose
+from ucsio.parsing.lalr import Rejected
 
 ROOT = Path(__file__).resolve().parents[1]
 CORPUS = ROOT.parent / "shared" / "corpus"
@@ -197,9 +197,9 @@ def same_tree(ours, theirs) -> bool:
 def same_as_whole_tree(doc: Document, full, full_err) -> None:
     """``check`` (the recogniser over every byte, the fast path for frames)
     shows exactly what Lark's tree of every byte shows (``parse_whole``)."""
-    from ucsio import krl, rapid
-    from ucsio.controller import detect_vendor
-    from ucsio.document import looks_binary
+    from ucsio.parsing import krl, rapid
+    from ucsio.parsing.controller import detect_vendor
+    from ucsio.parsing.document import looks_binary
 
     if looks_binary(doc.raw):
         return
@@ -211,8 +211,8 @@ def same_as_whole_tree(doc: Document, full, full_err) -> None:
     except Rejected:
         got = None
     if (got is None) != (want is None) or (want is not None and not same_tree(got, want)):
-        raise Finding("ucsio.lalr's tree is not Lark's" if want is not None and got is not None
-                      else f"ucsio.lalr {'accepts' if got is not None else 'rejects'} what "
+        raise Finding("ucsio.parsing.lalr's tree is not Lark's" if want is not None and got is not None
+                      else f"ucsio.parsing.lalr {'accepts' if got is not None else 'rejects'} what "
                            f"Lark {'rejects' if want is None else 'accepts'}")
     try:
         ref = module.parse_whole(doc), None
@@ -242,7 +242,7 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
     """Run the oracle on one input; raise Finding on anything wrong. Returns
     a short word for statistics ('refused', 'accepted', 'check-only')."""
     from ucsio.commands.check import round_trip
-    from ucsio.patch import patch_frame
+    from ucsio.review.patch import patch_frame
 
     doc = Document(raw, name)
     if doc.to_bytes() != raw:

@@ -6,7 +6,7 @@ deletes a sign that a comment or line break parts from its digits
 other frames — stays byte for byte."""
 from __future__ import annotations
 
-from ucsio.frames import Frame
+from ucsio.geometry.frames import Frame
 
 
 def skeleton(text: str, frames: list[Frame]) -> str:

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ucsio import batch as B
+from ucsio.fleet import batch as B
 from ucsio.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -155,8 +155,8 @@ def test_group_statistics(fleet_json):
 
 def test_batch_solutions_equal_solve(fleet):
     """The batched solver gives what `ucsio solve` gives, entry by entry."""
-    from ucsio import solve
-    from ucsio.measurement import read_measurement
+    from ucsio.method import solve
+    from ucsio.method.measurement import read_measurement
 
     dest, _ = fleet
     res = B.run_batch(B.read_manifest(dest / "manifest.toml"))
@@ -183,7 +183,7 @@ def test_batch_solutions_equal_solve(fleet):
 
 
 def test_solve_many_errors_like_solve():
-    from ucsio import solve
+    from ucsio.method import solve
     rng = np.random.default_rng(1)
     laser = rng.uniform(-300, 300, size=(7, 3))
     names = [f"P{i}" for i in range(7)]
@@ -202,17 +202,17 @@ def test_solve_many_errors_like_solve():
 
 
 def test_one_horn_call_per_round_and_one_parse_per_file(fleet, monkeypatch):
-    import ucsio.controller
-    import ucsio.horn
+    import ucsio.parsing.controller
+    import ucsio.method.horn
 
     dest, truth = fleet
     calls = []
-    real = ucsio.horn.leave_one_out
-    monkeypatch.setattr(ucsio.horn, "leave_one_out",
+    real = ucsio.method.horn.leave_one_out
+    monkeypatch.setattr(ucsio.method.horn, "leave_one_out",
                         lambda *a, **k: calls.append(len(a[0])) or real(*a, **k))
     loads = []
-    real_load = ucsio.controller.load
-    monkeypatch.setattr(ucsio.controller, "load", lambda p, *a, **k: loads.append(p) or real_load(p, *a, **k))
+    real_load = ucsio.parsing.controller.load
+    monkeypatch.setattr(ucsio.parsing.controller, "load", lambda p, *a, **k: loads.append(p) or real_load(p, *a, **k))
     res = B.run_batch(B.read_manifest(dest / "manifest.toml"))
     most_excluded = max(sum(p.excluded_by == "auto" for p in r.solution.points)
                         for r in res.entries if r.solution is not None)
@@ -224,7 +224,7 @@ def test_one_horn_call_per_round_and_one_parse_per_file(fleet, monkeypatch):
 
 
 def test_padding_budget_buckets_by_point_count(monkeypatch):
-    from ucsio import solve
+    from ucsio.method import solve
     monkeypatch.setattr(solve, "PAD_BUDGET", 10)
     rng = np.random.default_rng(2)
     data = []
@@ -459,7 +459,7 @@ def test_defaults_and_paths(tmp_path):
 def test_summarize_conventions():
     from types import SimpleNamespace as NS
 
-    from ucsio.frames import Pose
+    from ucsio.geometry.frames import Pose
 
     def res(group, e, passed=True, accepted=True, error=None, x=0.0):
         r = B.EntryResult(entry=None)
@@ -491,7 +491,7 @@ def _abb_cell(folder: Path, *, sibling: bool = False, csv_name: str = "m.csv"):
     the exact points of a measurement of the object frame's true pose
     (m.csv) and of the user frame (u.csv). With ``sibling``, other.mod
     declares the same PERS (patch_frame refuses to patch one of them)."""
-    from ucsio.frames import Pose
+    from ucsio.geometry.frames import Pose
 
     U = Pose.from_abc(1000.0, 200.0, 300.0, 90.0, 0.0, 0.0)
     O_true = Pose.from_abc(50.0, 20.0, 5.0, 10.0, 0.0, 0.0)
@@ -573,7 +573,7 @@ def test_outputs_survive_any_missing_value(tmp_path):
 
     from ucsio.commands.batch import render
     from ucsio.output import _clean
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
 
     _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(_GOOD)
@@ -673,7 +673,7 @@ def test_written_patch_is_listed(tmp_path, capsys):
 def test_oframe_uncertainty_in_user_frame_axes(tmp_path, capsys):
     """--uncertainty of an object frame is in the axes (and coordinates) of
     its ``frame``, the user frame: U turns 90 deg about z, so x and y swap."""
-    from ucsio.solve import uncertainty
+    from ucsio.method.solve import uncertainty
 
     U, O_true = _abb_cell(tmp_path)
     (tmp_path / "m.toml").write_text(
@@ -791,7 +791,7 @@ def test_rejected_solution_file_gives_its_reason(tmp_path, capsys):
     """diff/patch refuse a rejected SOLUTION.json with the reason it holds;
     a file without one gets the generic wording."""
     from ucsio.errors import UcsioError
-    from ucsio.solution import load_solution, pose_from_json
+    from ucsio.method.solution import load_solution, pose_from_json
 
     (tmp_path / "three.csv").write_text(_THREE)
     sol = tmp_path / "s.json"
@@ -827,7 +827,7 @@ def test_manifest_not_utf8_is_exit_2(tmp_path, capsys):
 
 
 def test_solution_not_utf8_is_exit_2(tmp_path, capsys):
-    from ucsio.solution import load_solution
+    from ucsio.method.solution import load_solution
 
     _abb_cell(tmp_path)
     s = tmp_path / "s.json"
@@ -860,12 +860,12 @@ def _two_frames_one_file(tmp_path):
 def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
     """The source and its sibling modules are parsed once (through the run's
     cache), and the combined copy once: no per-entry sibling or read-back parse."""
-    import ucsio.rapid
+    import ucsio.parsing.rapid
 
     _two_frames_one_file(tmp_path)
     parsed = []
-    real = ucsio.rapid.parse
-    monkeypatch.setattr(ucsio.rapid, "parse",
+    real = ucsio.parsing.rapid.parse
+    monkeypatch.setattr(ucsio.parsing.rapid, "parse",
                         lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
     res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), patch_dir=str(tmp_path / "out"))
     assert all(r.passed and r.patch_error is None for r in res.entries)
@@ -874,7 +874,7 @@ def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
     # source, combined copy; other.mod never names wobj1, so it cannot declare it: not parsed
     assert sorted(parsed) == ["cell.mod", "cell.mod"]
     assert res.timings["controllers"] == 1
-    from ucsio.controller import load
+    from ucsio.parsing.controller import load
     again = load(copy)
     for r in res.entries:
         assert again.frame(r.entry.frame).pose is not None
@@ -885,7 +885,7 @@ def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
 def test_patch_dir_combined_copy_is_verified(tmp_path, monkeypatch):
     """patch_frame no longer parses each frame's copy: the combined copy's
     read-back (patch.reads_back, through patch.verify) still guards the write."""
-    import ucsio.patch as patcher
+    import ucsio.review.patch as patcher
 
     _two_frames_one_file(tmp_path)
     monkeypatch.setattr(patcher, "reads_back", lambda frame, pose: False)
@@ -897,7 +897,7 @@ def test_patch_dir_combined_copy_is_verified(tmp_path, monkeypatch):
 def test_patch_dir_refuses_a_source_changed_during_the_run(tmp_path, monkeypatch):
     """The copy holds the patched bytes of the source as it was read: if the
     source changed on disk since, the copy is not written (patch error)."""
-    import ucsio.patch as patcher
+    import ucsio.review.patch as patcher
 
     _two_frames_one_file(tmp_path)
     src = tmp_path / "cell.mod"

@@ -140,7 +140,7 @@ def test_manifest_points_must_be_a_boolean(tmp_path):
     ("/plant/R02/cell.mod", "R02"),
 ])
 def test_default_station_is_the_folder_above_the_backup_layout(controller, station):
-    from ucsio.batch import Entry, EntryResult
+    from ucsio.fleet.batch import Entry, EntryResult
 
     entry = Entry(index=0, name="e", measurement="m.csv", controller=controller, frame="f",
                   tcp=(0.0, 0.0, 0.0), tool=None)

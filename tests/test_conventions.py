@@ -115,7 +115,7 @@ def test_every_lint_code_is_registered_and_every_finding_names_one():
     """check --ignore accepts exactly the registered codes: a code emitted
     anywhere in the parsers must be in controller.LINT_CODES."""
     import re
-    from ucsio.controller import LINT_CODES
+    from ucsio.parsing.controller import LINT_CODES
     emitted = set()
     for path in (ROOT / "src" / "ucsio").rglob("*.py"):
         text = path.read_text()

@@ -8,7 +8,7 @@ from importlib import resources
 
 import pytest
 
-from ucsio.controller import load
+from ucsio.parsing.controller import load
 from ucsio.demo import CELLS
 
 

@@ -10,10 +10,10 @@ import pytest
 from conftest import FIXTURES
 from ucsio import api
 from ucsio.cli import main
-from ucsio.controller import load
-from ucsio.diff import frame_delta
-from ucsio.frames import Pose
-from ucsio.review import diff_files, frame_line, textconv
+from ucsio.parsing.controller import load
+from ucsio.review.diff import frame_delta
+from ucsio.geometry.frames import Pose
+from ucsio.review.compare import diff_files, frame_line, textconv
 
 PATCH = FIXTURES / "patch"
 CELL = PATCH / "cell.mod"
@@ -192,8 +192,8 @@ def test_api_solution_forms(tmp_path):
 
 
 def test_per_axis_deltas_use_canonical_angles():
-    from ucsio.diff import frame_delta
-    from ucsio.frames import Pose
+    from ucsio.review.diff import frame_delta
+    from ucsio.geometry.frames import Pose
     # the same rotation written out of SPEC's ranges: no per-axis difference
     d = frame_delta(Pose.from_abc(1, 2, 3, 200, 100, -181), Pose.from_abc(1, 2, 3, 20, 80, -1))
     assert (d["da"], d["db"], d["dc"], d["angle"]) == pytest.approx((0, 0, 0, 0), abs=1e-9)

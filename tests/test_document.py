@@ -1,4 +1,4 @@
-from ucsio.document import BOM, Document, Edit, Span, looks_binary
+from ucsio.parsing.document import BOM, Document, Edit, Span, looks_binary
 
 
 def test_round_trip_every_encoding_and_line_ending():

@@ -11,7 +11,7 @@ import pytest
 
 from conftest import FIXTURES
 from ucsio.cli import main
-from ucsio.controller import load
+from ucsio.parsing.controller import load
 from ucsio.errors import UcsioError
 from ucsio.files import atomic_write
 

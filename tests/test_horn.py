@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from ucsio import horn
-from ucsio import rotations as rot
+from ucsio.method import horn
+from ucsio.geometry import rotations as rot
 from ucsio.errors import UcsioError
 
 
@@ -350,7 +350,7 @@ def test_large_set_solves_with_leave_one_out_in_linear_memory():
     """20,000 points (the benchmark runs 100,000): the fit, and every
     point's leave-one-out residual, without n x n anything (the old way
     needed 20,000^2 x 3 numbers: 9.6 GB)."""
-    from ucsio.solve import solve_points
+    from ucsio.method.solve import solve_points
     rng = np.random.default_rng(28)
     n = 20_000
     laser, robot, truth, t = large_set(rng, n)
@@ -369,7 +369,7 @@ def test_large_set_solves_with_leave_one_out_in_linear_memory():
 
 
 def test_ten_thousand_collinear_points_refused():
-    from ucsio.solve import solve_points
+    from ucsio.method.solve import solve_points
     rng = np.random.default_rng(29)
     n = 10_000
     d = np.array([0.48, 0.6, 0.64])

@@ -10,13 +10,13 @@ import pytest
 
 from conftest import FIXTURES
 from oracles import only_numbers_changed
-from ucsio import rotations as rot
+from ucsio.geometry import rotations as rot
 from ucsio.cli import main
-from ucsio.controller import load, parse
-from ucsio.document import Document
+from ucsio.parsing.controller import load, parse
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
-from ucsio.frames import Pose
-from ucsio.patch import patch_frame
+from ucsio.geometry.frames import Pose
+from ucsio.review.patch import patch_frame
 
 HOSTILE = FIXTURES / "hostile"
 SIGNS = HOSTILE / "detached_signs.mod"

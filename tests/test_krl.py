@@ -1,4 +1,4 @@
-"""KUKA KRL data lists: grammars/krl.lark + ucsio.krl (issue 3).
+"""KUKA KRL data lists: grammars/krl.lark + ucsio.parsing.krl (issue 3).
 
 The real files are read in place from ../shared/corpus/kuka (never copied into
 the project); hand-written fixtures cover what the corpus lacks.
@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from ucsio import controller, krl
-from ucsio.document import Document
+from ucsio.parsing import controller, krl
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,4 +1,4 @@
-"""ucsio.lalr, the grammars' run-time parser: it reads Lark's tables and must
+"""ucsio.parsing.lalr, the grammars' run-time parser: it reads Lark's tables and must
 do what Lark does. Its trees are Lark's trees, token for token; it accepts
 and rejects what Lark accepts and rejects, recognising (``check``) with its
 literal shortcuts and without them; ``check`` built on it shows exactly
@@ -19,11 +19,11 @@ from hypothesis import strategies as st
 import fuzzing
 from fuzzing import lark_tree, same_tree
 from conftest import FIXTURES, corpus_files
-from ucsio import grammar, krl, lalr, rapid
-from ucsio.controller import parse
-from ucsio.document import Document
+from ucsio.parsing import grammar, krl, lalr, rapid
+from ucsio.parsing.controller import parse
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
-from ucsio.lalr import Rejected, noncapturing
+from ucsio.parsing.lalr import Rejected, noncapturing
 
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow])

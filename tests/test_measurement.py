@@ -9,8 +9,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from ucsio.errors import UcsioError
-from ucsio.measurement import parse_measurement, read_measurement
-from ucsio.solve import solve
+from ucsio.method.measurement import parse_measurement, read_measurement
+from ucsio.method.solve import solve
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "measurements"
 TCP = (-20.67, 89.73, 33.44)

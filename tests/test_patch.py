@@ -12,13 +12,13 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, corpus_files
-from ucsio import rotations as rot
+from ucsio.geometry import rotations as rot
 from ucsio.cli import main
-from ucsio.controller import load, parse
-from ucsio.document import Document
+from ucsio.parsing.controller import load, parse
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
-from ucsio.frames import Pose
-from ucsio.patch import (QUAT_NORM_MAX, edits_for, format_number, patch_frame, plan, save)
+from ucsio.geometry.frames import Pose
+from ucsio.review.patch import (QUAT_NORM_MAX, edits_for, format_number, patch_frame, plan, save)
 
 PATCH = FIXTURES / "patch"
 CELL = PATCH / "cell.mod"
@@ -443,7 +443,7 @@ def test_file_changed_between_read_and_write(tmp_path, capsys, monkeypatch):
         save(res)
     assert f.read_bytes() == edited and temp_files(tmp_path) == []
     # CLI: the change lands while the patch is being planned
-    import ucsio.patch as patch_mod
+    import ucsio.review.patch as patch_mod
     real_verify = patch_mod.verify
 
     def verify_and_touch(result):
@@ -496,7 +496,7 @@ def test_kuka_angles_written_in_spec_ranges(given, written):
 def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
     """The shared-PERS check parses a sibling module only when its bytes
     hold the data's name (any case); the refusal still finds the real one."""
-    import ucsio.rapid
+    import ucsio.parsing.rapid
 
     decl = 'PERS wobjdata wobjA:=[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
     (tmp_path / "cell.mod").write_text("MODULE cell\n  " + decl + "ENDMODULE\n")
@@ -505,8 +505,8 @@ def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
     (tmp_path / "other.mod").write_text("MODULE other\n  " + decl.replace("wobjA", "wobjAB")
                                         + "ENDMODULE\n")
     parsed = []
-    real = ucsio.rapid.parse
-    monkeypatch.setattr(ucsio.rapid, "parse",
+    real = ucsio.parsing.rapid.parse
+    monkeypatch.setattr(ucsio.parsing.rapid, "parse",
                         lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
     cf = load(tmp_path / "cell.mod")
     with pytest.raises(UcsioError, match="also declared in same.mod"):
@@ -522,7 +522,7 @@ def _whole_file_diff(doc, new_bytes, label, n=1):
     import difflib
     import re
 
-    from ucsio.document import text_lines
+    from ucsio.parsing.document import text_lines
 
     new_text = Document(new_bytes, doc.path).text
     a, b = text_lines(doc.text), text_lines(new_text)
@@ -553,7 +553,7 @@ from hypothesis import strategies as st  # noqa: E402
                                 st.sampled_from(["", "1", "x\n", "\n", "-0.5", "b"])),
                       min_size=1, max_size=3))
 def test_patch_diff_from_the_changed_window_equals_the_whole_file_diff(lines, eol, final, edits):
-    from ucsio.patch import unified_diff
+    from ucsio.review.patch import unified_diff
 
     text = eol.join(lines) + (eol if final and lines else "")
     new = text

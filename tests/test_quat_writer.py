@@ -16,11 +16,11 @@ import random
 import pytest
 
 from conftest import FIXTURES
-from ucsio import rotations as rot
-from ucsio.controller import load, parse
-from ucsio.document import Document
-from ucsio.frames import Pose
-from ucsio.patch import QUAT_NORM_MAX, _rotation_gap, patch_frame, quat_to_write
+from ucsio.geometry import rotations as rot
+from ucsio.parsing.controller import load, parse
+from ucsio.parsing.document import Document
+from ucsio.geometry.frames import Pose
+from ucsio.review.patch import QUAT_NORM_MAX, _rotation_gap, patch_frame, quat_to_write
 
 STEP = 1e-6
 MAX_ANGLE_DEG = 1.2e-4          # what 6 decimals allow: |dq| <= 4 x 5e-7 -> 2e-6 rad

@@ -10,8 +10,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import ucsio
-from ucsio import rapid
-from ucsio.document import Document
+from ucsio.parsing import rapid
+from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
 
 from conftest import FIXTURES, corpus_file, corpus_files
@@ -58,7 +58,7 @@ def _abc(r):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # gimbal lock: scipy also sets the third angle to 0
         a, b, c = r.as_euler("ZYX", degrees=True)
-    return tuple(ucsio.rotations.wrap180(v) for v in (a, b, c))
+    return tuple(ucsio.geometry.rotations.wrap180(v) for v in (a, b, c))
 
 
 def test_corpus_values_read_by_hand():
@@ -295,8 +295,8 @@ def test_outline_and_grammar_share_routine_and_record_patterns():
 
 def test_check_round_trip_catches_a_span_off_by_one():
     from ucsio.commands.check import round_trip
-    from ucsio.frames import Number
-    from ucsio.document import Span
+    from ucsio.geometry.frames import Number
+    from ucsio.parsing.document import Span
     cf = rapid.parse(Document((ABB / "two_modules_crcrlf.prg").read_bytes(), "x.prg"), full=True)
     assert round_trip(cf)
     n = cf.frames[0].numbers["x"]

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from ucsio import rapid
-from ucsio.document import Document
+from ucsio.parsing import rapid
+from ucsio.parsing.document import Document
 
 W = '[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]]'
 

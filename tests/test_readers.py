@@ -16,8 +16,8 @@ from ucsio.errors import UcsioError
 from ucsio.readers.laser import read_laser
 from ucsio.readers.pairing import pair, read_map
 from ucsio.readers.robot import read_robot
-from ucsio.measurement import read_measurement
-from ucsio.solve import solve
+from ucsio.method.measurement import read_measurement
+from ucsio.method.solve import solve
 
 TCP = (12.5, -30.25, 180.0)
 
@@ -341,8 +341,8 @@ def test_cli_laser_and_robot(tmp_path, capsys):
 
 def test_kuka_positions_of_a_real_program_dat():
     from conftest import corpus_file
-    from ucsio.document import Document
-    from ucsio.krl import positions
+    from ucsio.parsing.document import Document
+    from ucsio.parsing.krl import positions
 
     found = {p.name: p for p in positions(Document.read(
         corpus_file("kuka", "C1_pickConveyorBP.dat")))}
@@ -356,8 +356,8 @@ def test_kuka_positions_of_a_real_program_dat():
 
 def test_abb_robtargets_of_a_real_module():
     from conftest import corpus_file
-    from ucsio.controller import load
-    from ucsio.rapid import robtargets
+    from ucsio.parsing.controller import load
+    from ucsio.parsing.rapid import robtargets
 
     cf = load(corpus_file("abb", "HandEyeCalibrationExample.modx"), full=True)
     targets = robtargets(cf)

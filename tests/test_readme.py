@@ -24,7 +24,7 @@ def test_first_command_makes_a_virtual_environment():
 
 
 def test_measurement_example_is_read_as_written(tmp_path):
-    from ucsio.measurement import KNOWN, read_measurement
+    from ucsio.method.measurement import KNOWN, read_measurement
     (csv,) = code_blocks("csv")
     path = tmp_path / "points.csv"
     path.write_text(csv)
@@ -39,7 +39,7 @@ def test_measurement_example_is_read_as_written(tmp_path):
 
 
 def test_manifest_example_names_every_key_and_is_valid():
-    from ucsio import batch
+    from ucsio.fleet import batch
     blocks = [b for b in code_blocks("toml") if "[[entry]]" in b]
     example = max(blocks, key=len)
     data = tomllib.loads(example)
@@ -53,7 +53,7 @@ def test_manifest_example_names_every_key_and_is_valid():
 
 
 def test_every_lint_code_is_in_the_table():
-    from ucsio.controller import LINT_CODES
+    from ucsio.parsing.controller import LINT_CODES
     section = README.split("### Lint codes", 1)[1].split("\n### ", 1)[0]
     for code in LINT_CODES:
         assert f"`{code}`" in section, code

@@ -139,7 +139,7 @@ def test_self_contained(report):
 
 
 def test_names_are_escaped(tmp_path):
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
     data = {"manifest": "m.toml", "summary": {
         "total": 1, "passed": 0, "rejected": 0, "errors": 1, "over_tolerance": 0,
         "success_rate": 0.0, "correlation": {"x": None, "y": None, "z": None},
@@ -168,7 +168,7 @@ def _one(entry: dict, **summary) -> dict:
 def test_entry_failed_after_it_was_solved():
     """Refused at the diff (e.g. a KUKA BASE_TYPE #TCP base): e is null, but
     the points, n_used and rms are there; the report shows both."""
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
     entry = {"name": "R01", "status": "error", "accepted": False, "e": None, "dt_mean": None,
              "group": None, "pass": False, "frame": None, "stage": "diff",
              "error": "frame BASE_DATA[2]: BASE_TYPE #TCP: not a plain base",
@@ -185,7 +185,7 @@ def test_entry_failed_after_it_was_solved():
 
 
 def test_uncertainty_axes_and_patch_error_in_report():
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
     entry = {"name": "o", "status": "pass", "accepted": True, "e": 0.05, "dt_mean": 1.0,
              "group": 1, "pass": True, "n_points": 6, "n_used": 6, "rms": 0.05, "max": 0.08,
              "threshold": 1.5, "tolerance": 100.0, "points": [],
@@ -203,7 +203,7 @@ def test_rejected_entry_shows_its_reason():
     rejected too (residuals over the threshold, no point to single out). A
     JSON without a reason (older, hand-edited) gets a generic line, shown
     even when the entry has no points."""
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
     why = ("residuals over the threshold and no point can be singled out: max 7.100 mm > 1.5 mm "
            "with 3 points used (the leave-one-out residual needs at least 4 points)")
     entry = {"name": "three", "status": "rejected", "accepted": False, "e": 2.5, "pass": False,
@@ -266,7 +266,7 @@ def test_station_rollup(report):
 
 
 def test_nothing_needs_action_and_points_moved():
-    from ucsio.report import render_report
+    from ucsio.fleet.report import render_report
     entry = {"name": "ok", "status": "pass", "accepted": True, "e": 0.05, "dt_mean": 3.0,
              "group": 1, "pass": True, "station": "cell 7", "tolerance": 100.0,
              "points_moved": {"count": 12, "max": 17.25, "mean": 6.0, "worst": "XP7"}}

@@ -1,4 +1,4 @@
-"""ucsio.rotations against two independent references:
+"""ucsio.geometry.rotations against two independent references:
 scipy.spatial.transform.Rotation and robodk.robomath."""
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from ucsio import rotations as rot
+from ucsio.geometry import rotations as rot
 
 robomath = pytest.importorskip("robodk.robomath")
 

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from ucsio import horn
+from ucsio.method import horn
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.frames import Frame, Pose
-from ucsio.measurement import read_measurement
-from ucsio.solve import (analytical_std, leave_one_out, load_solution, solve, solve_points,
+from ucsio.geometry.frames import Frame, Pose
+from ucsio.method.measurement import read_measurement
+from ucsio.method.solve import (analytical_std, leave_one_out, load_solution, solve, solve_points,
                          uncertainty)
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "measurements"
@@ -369,14 +369,14 @@ def tool_frame(reference="flange", robhold=True):
 
 
 def test_cli_tool_from_controller_file(capsys, monkeypatch):
-    import ucsio.controller
+    import ucsio.parsing.controller
     seen = []
 
     def fake_load(path, full=False):
         seen.append(path)
         return FakeController(tool_frame())
 
-    monkeypatch.setattr(ucsio.controller, "load", fake_load)
+    monkeypatch.setattr(ucsio.parsing.controller, "load", fake_load)
     rc, out, err = run_cli(capsys, str(KUKA), "--tool", "C:/cell/user.mod:treflector", "--json")
     assert rc == 0 and seen == ["C:/cell/user.mod"]           # split at the last ':'
     d = json.loads(out)
@@ -389,8 +389,8 @@ def test_cli_tool_from_controller_file(capsys, monkeypatch):
 @pytest.mark.parametrize("reference, robhold", [("world", False), ("flange", False),
                                                 ("world", None)])
 def test_cli_tool_must_be_robot_held(capsys, monkeypatch, reference, robhold):
-    import ucsio.controller
-    monkeypatch.setattr(ucsio.controller, "load",
+    import ucsio.parsing.controller
+    monkeypatch.setattr(ucsio.parsing.controller, "load",
                         lambda path, full=False: FakeController(tool_frame(reference, robhold)))
     rc, out, err = run_cli(capsys, str(KUKA), "--tool", "user.mod:tReflector")
     assert rc == 2 and "not a robot-held tool" in err and "user.mod:4" in err
@@ -504,7 +504,7 @@ def test_reasons_for_too_few_points():
 
 
 def test_acceptance_rule():
-    from ucsio.solve import acceptance
+    from ucsio.method.solve import acceptance
     kw = dict(threshold=1.5, min_points=3)
     assert acceptance(3, 1.5, **kw) == (True, None)
     ok, why = acceptance(3, 1.6, **kw)
@@ -517,7 +517,7 @@ def test_acceptance_rule():
 
 
 def test_rejected_solution_built_elsewhere_still_has_a_reason():
-    from ucsio.solve import Solution
+    from ucsio.method.solve import Solution
     sol = solve_points(*pointset(1, noise=0.1)[:3])
     other = Solution(pose=sol.pose, points=sol.points, n_points=9, n_used=4, rms=0.1, mean=0.1,
                      max=0.1, accepted=False, min_points=6)

@@ -240,7 +240,7 @@ def test_every_move_in_the_corpus_is_read_by_the_grammar():
     the grammar's `statements` start symbol; the one it cannot read is a
     real slip in a real file (Tool:= without its backslash), and it is an
     assignment, so it is not warned about."""
-    from ucsio.document import Document
+    from ucsio.parsing.document import Document
     from ucsio.taught import abb
 
     n = 0
@@ -268,9 +268,9 @@ def test_points_needs_frame_and_measured():
 def test_positions_fast_path_equals_the_full_parse(path):
     """diff --points reads a tree's .dat files on the fast path (position and
     FDAT lines only); it must find what the whole-file parse finds."""
-    from ucsio.document import Document
+    from ucsio.parsing.document import Document
     from ucsio.errors import UcsioError
-    from ucsio.krl import positions
+    from ucsio.parsing.krl import positions
 
     doc = Document.read(path)
 
@@ -290,8 +290,8 @@ def test_plain_robtargets_read_without_lark_equal_the_grammars_reading():
     """A robtarget in the controller's plain form is read with a strict regex
     (a path module has thousands); on every corpus robtarget it gives what
     the grammar gives, and anything it does not take goes to the grammar."""
-    from ucsio import rapid
-    from ucsio.document import Document
+    from ucsio.parsing import rapid
+    from ucsio.parsing.document import Document
     from ucsio.taught import abb
 
     fast = slow = 0

@@ -1,4 +1,4 @@
-"""The TCP solved with the frame (ucsio.tcp_solve, ``solve --tcp solve``),
+"""The TCP solved with the frame (ucsio.method.tcp_solve, ``solve --tcp solve``),
 checked on synthetic truth: the UCS, the TCP and the flange poses are drawn
 with scipy, the measurement gets SPEC's default noise (0.015 mm laser, 0.05
 mm robot, per axis)."""
@@ -12,12 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from ucsio import tcp_solve
+from ucsio.method import tcp_solve
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.horn import rotation_angle_deg
-from ucsio.measurement import Measurement
-from ucsio.solve import solve
+from ucsio.method.horn import rotation_angle_deg
+from ucsio.method.measurement import Measurement
+from ucsio.method.solve import solve
 
 TCP = np.array([12.5, -30.25, 180.0])
 
@@ -268,7 +268,7 @@ def solved_solution(tmp_path, capsys, spread=30, name="sol.json"):
 
 @pytest.mark.parametrize("vendor", ["abb", "kuka"])
 def test_patch_writes_the_solved_tcp_into_a_tool_and_nothing_else(tmp_path, capsys, vendor):
-    from ucsio.controller import load
+    from ucsio.parsing.controller import load
 
     sol, tcp = solved_solution(tmp_path, capsys)
     if vendor == "abb":
@@ -323,7 +323,7 @@ def test_patch_tool_refusals(tmp_path, capsys):
 # ------------------------------------------------------------------ batch
 
 def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
-    from ucsio.batch import read_manifest, run_batch
+    from ucsio.fleet.batch import read_manifest, run_batch
 
     meas, _, _ = cell(4, 30)
     csv = csv_of(meas, tmp_path / "m.csv")

@@ -14,10 +14,10 @@ import pytest
 from hypothesis import given, settings, strategies as st, HealthCheck
 from scipy.spatial.transform import Rotation
 
-from ucsio import horn, precision
+from ucsio.method import horn, precision
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.solve import solve_points
+from ucsio.method.solve import solve_points
 
 REACH = 1000.0
 THRESHOLD = 1.5

@@ -11,10 +11,10 @@ Importing ucsio is cheap: numpy, scipy and lark load only where they are used.
 """
 from __future__ import annotations
 
-from .controller import ControllerFile, load, parse
-from .document import Document
 from .errors import UcsioError
-from .frames import Frame, Pose
+from .geometry.frames import Frame, Pose
+from .parsing.controller import ControllerFile, load, parse
+from .parsing.document import Document
 
 __all__ = ["ControllerFile", "Document", "Frame", "Pose", "UcsioError", "load", "parse"]
 __version__ = "0.1.0"

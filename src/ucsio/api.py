@@ -19,13 +19,13 @@ from __future__ import annotations
 import os
 from typing import Any
 
-from .controller import ControllerFile
-from .controller import load as _load
-from .diff import DEFAULT_TOLERANCE
 from .errors import UcsioError
-from .frames import Frame, Pose
-from .patch import PatchResult
-from .solution import load_solution, pose_from_json
+from .geometry.frames import Frame, Pose
+from .method.solution import load_solution, pose_from_json
+from .parsing.controller import ControllerFile
+from .parsing.controller import load as _load
+from .review.diff import DEFAULT_TOLERANCE
+from .review.patch import PatchResult
 
 PathLike = str | os.PathLike
 
@@ -55,12 +55,12 @@ def solve(csv: PathLike, tcp, **options):
     Solution (``.pose``, ``.accepted``, ``.points``, ``.rms``, ``.precision``,
     ``.as_dict()``). ``tcp``: the reflector in flange coordinates (x, y, z) mm,
     no default (SPEC: never a silent 0,0,0), or ``"solve"`` to estimate it
-    with the frame (``ucsio.tcp_solve``). ``options``: threshold,
+    with the frame (``ucsio.method.tcp_solve``). ``options``: threshold,
     min_points, exclude, no_exclusion, reach, sigma_laser, sigma_robot."""
-    from .measurement import read_measurement
-    from .solve import solve as _solve
+    from .method.measurement import read_measurement
+    from .method.solve import solve as _solve
     if isinstance(tcp, str) and tcp.strip().casefold() == "solve":
-        from .tcp_solve import solve_joint   # the TCP solved with the frame
+        from .method.tcp_solve import solve_joint   # the TCP solved with the frame
         return solve_joint(read_measurement(csv), **options)
     return _solve(read_measurement(csv), tcp, **options)
 
@@ -95,8 +95,8 @@ def diff_frame(file: PathLike | ControllerFile, name: str, solution: Any,
     name, simulated, measured, dx dy dz da db dc angle dist dt_mean, group, pass.
     ``points`` (``--points``) adds ``points``, ``points_moved`` and
     ``points_warnings``: how far each position taught in the frame moves."""
-    from .patch import resolve_name
-    from .review import diff_frame as _diff_frame
+    from .review.patch import resolve_name
+    from .review.compare import diff_frame as _diff_frame
 
     cell = _cell(file)
     pose = as_pose(solution)
@@ -112,7 +112,7 @@ def diff_files(old: PathLike | ControllerFile | None,
     """Every frame of two files matched by name (``ucsio diff OLD NEW``):
     ``changed``, ``added``, ``removed``, ``unchanged`` (a count). ``None``
     for a file that does not exist."""
-    from .review import diff_files as _diff_files
+    from .review.compare import diff_files as _diff_files
     return _diff_files(None if old is None else _cell(old), None if new is None else _cell(new))
 
 
@@ -125,7 +125,7 @@ def patch(file: PathLike | ControllerFile, name: str, solution: Any, *,
 
     ``measured`` (default: True unless ``solution`` is a Pose) makes the
     frame's reference matter: a measured frame is in robot world."""
-    from .patch import patch_frame
+    from .review.patch import patch_frame
     if measured is None:
         measured = not isinstance(solution, Pose)
     return patch_frame(_cell(file), name, as_pose(solution), measured=measured, force=force,
@@ -136,13 +136,13 @@ def save(result: PatchResult, path: PathLike | None = None, backup: bool = False
     """Write a planned patch atomically: over the source file (``path`` None)
     or to ``path``; ``backup`` keeps FILE.bak. Refused if the source changed
     on disk since it was read. Returns the path written."""
-    from .patch import save as _save
+    from .review.patch import save as _save
     return _save(result, path, backup=backup)
 
 
 def textconv(file: PathLike | ControllerFile) -> str:
     """One stable line per frame, then the file's text (``ucsio diff --textconv``)."""
-    from .review import textconv as _textconv
+    from .review.compare import textconv as _textconv
     return _textconv(_cell(file))
 
 

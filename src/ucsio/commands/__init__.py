@@ -19,7 +19,7 @@ def load_inputs(paths: list[str], full: bool = False):
     """Controller files, folders and archives -> ((source, parsed file) pairs,
     errors). One plain file that cannot be read is raised as it is (SPEC's
     single error); with many, each failure is collected and the rest read."""
-    from ..backup import load_all, single_input
+    from ..parsing.backup import load_all, single_input
     parsed, errors = load_all(paths, full=full)
     if errors and single_input(paths):
         raise errors[0]

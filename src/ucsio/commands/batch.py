@@ -10,8 +10,8 @@ import argparse
 import os
 import sys
 
-from ..errors import UcsioError
 from . import add_uncertainty_options
+from ..errors import UcsioError
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -78,9 +78,9 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from ..batch import read_manifest, run_batch, write_csv
+    from ..fleet.batch import read_manifest, run_batch, write_csv
     from ..output import emit_json
-    from ..solve import check_sigmas
+    from ..method.solve import check_sigmas
 
     if args.uncertainty and args.uncertainty < 2:
         raise UcsioError("--uncertainty needs N >= 2 samples")
@@ -107,7 +107,7 @@ def _run(args) -> int:
     if args.csv:
         write_csv(result.entries, args.csv)  # atomic; errors: one UcsioError
     if args.report:
-        from ..report import write_report
+        from ..fleet.report import write_report
         write_report(result, args.report, csv=args.csv)
 
     if args.json:

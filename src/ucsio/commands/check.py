@@ -48,7 +48,7 @@ def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
 def ignored_codes(values: list[str]) -> frozenset:
     """--ignore a,b --ignore c -> {a, b, c}; an unknown code is a usage error
     with the nearest real one suggested (a typo must not silence nothing)."""
-    from ..controller import LINT_CODES
+    from ..parsing.controller import LINT_CODES
     from ..errors import UsageError, did_you_mean
     codes = {c.strip().lower() for v in values for c in v.split(",") if c.strip()}
     for c in sorted(codes):

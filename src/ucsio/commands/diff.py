@@ -62,7 +62,7 @@ def run(args) -> int:
             raise UsageError("ucsio diff: --textconv prints text for git; it does not go with --json")
         if len(files) != 1 or args.frame or args.measured:
             raise UsageError("ucsio diff: --textconv takes exactly one FILE")
-        from ..review import textconv_file
+        from ..review.compare import textconv_file
         sys.stdout.write(textconv_file(files[0]))
         return 0
     if args.frame or args.measured:
@@ -77,16 +77,16 @@ def run(args) -> int:
     if len(files) != 2:
         raise UsageError("ucsio diff: expected OLD NEW, FILE --frame NAME --measured "
                          "SOLUTION.json, or --textconv FILE (see ucsio diff --help)")
-    from ..backup import is_many
+    from ..parsing.backup import is_many
     many = [is_many(f) for f in files]
     if any(many):
         if not all(many):
             raise UsageError("ucsio diff: OLD and NEW are both files or both backups "
                              "(folders or .zip archives)")
         return _backups(args)
-    from ..backup import load_one
+    from ..parsing.backup import load_one
     from ..output import paint_diff
-    from ..review import files_diff_text
+    from ..review.compare import files_diff_text
     old, new = load_one(files[0]), load_one(files[1])
     text, result = files_diff_text(old, new, files[0], files[1])
     if args.json:
@@ -99,7 +99,7 @@ def run(args) -> int:
 
 
 def _backups(args) -> int:
-    from ..backup_diff import as_json, diff_backups, differs, format_backup_diff
+    from ..review.backup_diff import as_json, diff_backups, differs, format_backup_diff
     from ..output import paint_diff
     from . import report_failures
 
@@ -115,7 +115,7 @@ def _backups(args) -> int:
 
 
 def _git(args) -> int:
-    from ..review import git_diff
+    from ..review.compare import git_diff
     path, old_file, _oh, _om, new_file, _nh, _nm = args.files
     text, result = git_diff(path, old_file, new_file)
     if args.json:
@@ -127,9 +127,9 @@ def _git(args) -> int:
 
 def _one_frame(args) -> int:
     from ..api import read_solution
-    from ..backup import load_one as load
-    from ..diff import DEFAULT_TOLERANCE
-    from ..review import diff_frame
+    from ..parsing.backup import load_one as load
+    from ..review.diff import DEFAULT_TOLERANCE
+    from ..review.compare import diff_frame
 
     tol = DEFAULT_TOLERANCE if args.tolerance is None else args.tolerance
     if not tol > 0:
@@ -139,7 +139,7 @@ def _one_frame(args) -> int:
     cf = load(args.files[0])
     d = diff_frame(cf, args.frame, measured, tol, oframe=args.oframe)
     if args.points:
-        from ..patch import resolve_name
+        from ..review.patch import resolve_name
         from ..taught import points_moved
         d.update(points_moved(cf, cf.frame(resolve_name(args.frame, args.oframe)), measured))
         for w in d["points_warnings"]:

@@ -71,9 +71,9 @@ def parse_values(text: str, n: int, option: str):
 
 def target_pose(args):
     """The pose to write, and whether it is a measured (world) solution."""
-    from ..frames import Pose
+    from ..geometry.frames import Pose
     if args.measured:
-        from ..solution import pose_from_json, read_json
+        from ..method.solution import pose_from_json, read_json
         args.solution_data = read_json(args.measured)   # read once: it may be standard input
         return pose_from_json(args.solution_data, args.measured,
                               allow_rejected=args.force), True
@@ -91,8 +91,8 @@ def solved_tcp_for(cf, args):
     patch on a tool writes the solved TCP's x, y, z and nothing else of it);
     None for every other frame, and where the solution's TCP was given, not
     solved (patch_frame then refuses a world frame for a tool, as before)."""
-    from ..patch import resolve_name, robot_held_tool
-    from ..solution import solved_tcp
+    from ..review.patch import resolve_name, robot_held_tool
+    from ..method.solution import solved_tcp
 
     frame = cf.frame(resolve_name(args.frame, args.oframe))
     if not robot_held_tool(frame):
@@ -101,23 +101,23 @@ def solved_tcp_for(cf, args):
 
 
 def run(args) -> int:
-    from ..controller import load
+    from ..parsing.controller import load
     from ..errors import UsageError
     from ..output import paint_diff
-    from ..patch import patch_frame, save
+    from ..review.patch import patch_frame, save
 
     if args.backup and not args.in_place:
         raise UsageError("ucsio patch: --backup goes with --in-place")
     if args.output == "-" and args.json:
         raise UsageError("ucsio patch: -o - puts the patched file on stdout; it does not "
                          "go with --json")
-    from ..backup import refuse_member
+    from ..parsing.backup import refuse_member
     refuse_member(args.file)
     pose, measured = target_pose(args)
     cf = load(args.file)
     tcp = solved_tcp_for(cf, args) if measured else None
     if tcp is not None:
-        from ..patch import patch_tcp
+        from ..review.patch import patch_tcp
         result = patch_tcp(cf, args.frame, tcp, force=args.force)
     else:
         result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,

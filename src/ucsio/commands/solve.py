@@ -14,9 +14,9 @@ import argparse
 import os
 import sys
 
+from . import add_uncertainty_options
 from .. import defaults
 from ..errors import UcsioError
-from . import add_uncertainty_options
 from ..files import atomic_write_text
 
 
@@ -92,7 +92,7 @@ def read_inputs(args):
     for opt, given in (("--map", args.map), ("--config", args.config)):
         if given is not None:
             raise UcsioError(f"{opt} goes with --laser and --robot")
-    from ..measurement import read_measurement
+    from ..method.measurement import read_measurement
     return read_measurement(args.measurement), []
 
 
@@ -117,8 +117,8 @@ def tool_tcp(spec: str) -> tuple[float, float, float]:
     file, sep, name = spec.rpartition(":")
     if not sep or not file or not name:
         raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
-    from ..controller import load
-    from ..frames import tool_tcp as tcp_of
+    from ..parsing.controller import load
+    from ..geometry.frames import tool_tcp as tcp_of
     return tcp_of(load(file).frame(name), "--tool")
 
 
@@ -126,13 +126,13 @@ def run(args) -> int:
     import io
     import json
 
-    from .. import solve as solver
+    from ..method import solve as solver
     from ..output import _clean, emit_json
 
     if args.uncertainty and args.uncertainty < 2:
         raise UcsioError("--uncertainty N: needs at least 2 samples")
     if args.uncertainty:
-        from ..solve import check_sigmas
+        from ..method.solve import check_sigmas
         check_sigmas(args.sigma_laser, args.sigma_robot)
     to_stdout = args.output == "-"
     if args.output is not None and not to_stdout:
@@ -154,17 +154,17 @@ def run(args) -> int:
                     no_exclusion=args.no_exclusion, reach=args.reach,
                     sigma_laser=args.sigma_laser, sigma_robot=args.sigma_robot)
     if solve_tcp:
-        from ..tcp_solve import solve_joint
+        from ..method.tcp_solve import solve_joint
         sol = solve_joint(meas, exclude=args.exclude, **settings)
     else:
         sol = solver.solve(meas, tcp, exclude=args.exclude, tool=args.tool, **settings)
         if not sol.accepted:
-            from ..tcp_solve import diagnose
+            from ..method.tcp_solve import diagnose
             sol.diagnosis = diagnose(meas, sol, **settings)
             if sol.diagnosis:
                 sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
     if args.uncertainty and solve_tcp:
-        from ..tcp_solve import uncertainty
+        from ..method.tcp_solve import uncertainty
         sol.uncertainty = uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
                                       args.sigma_robot, args.seed)
     elif args.uncertainty:

@@ -59,13 +59,13 @@ def data_root():
 
 def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
              tolerance: float | None = None) -> dict[str, Any]:
-    from ..controller import load
-    from ..diff import DEFAULT_TOLERANCE
-    from ..measurement import read_measurement
-    from ..frames import tool_tcp
-    from ..patch import patch_frame, save
-    from ..review import diff_frame
-    from ..solve import solve
+    from ..parsing.controller import load
+    from ..review.diff import DEFAULT_TOLERANCE
+    from ..method.measurement import read_measurement
+    from ..geometry.frames import tool_tcp
+    from ..review.patch import patch_frame, save
+    from ..review.compare import diff_frame
+    from ..method.solve import solve
 
     tol = DEFAULT_TOLERANCE if tolerance is None else tolerance
     controller = root / cell.controller
@@ -113,7 +113,7 @@ def _solve_where_it_lives(cell: Cell, root: Path):
     from ..readers.laser import read_laser
     from ..readers.pairing import pair
     from ..readers.robot import read_robot
-    from ..tcp_solve import solve_joint
+    from ..method.tcp_solve import solve_joint
 
     meas, warnings = pair(read_laser(root / cell.measurement),
                           read_robot(root / cell.robot, config=str(root / cell.controller)))
@@ -124,9 +124,9 @@ def _with_tcp(cf, result, tool: str, tcp):
     """The frame's patch and the solved TCP's, as one patch of the file: the
     TCP goes into the frame-patched text, and the result replaces the
     original's bytes (what ``save`` checks against the file on disk)."""
-    from ..controller import parse
-    from ..document import Document
-    from ..patch import patch_tcp
+    from ..parsing.controller import parse
+    from ..parsing.document import Document
+    from ..review.patch import patch_tcp
 
     again = parse(Document(result.new_bytes, cf.path))
     tool_patch = patch_tcp(again, tool, tcp, check_siblings=False)

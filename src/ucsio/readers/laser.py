@@ -51,7 +51,7 @@ def is_spec_csv(text: str) -> bool:
 
 
 def spec_csv(text: str, path: str) -> LaserPoints:
-    from ..measurement import parse_measurement
+    from ..method.measurement import parse_measurement
 
     m = parse_measurement(text, path, sides=("laser",))
     return LaserPoints(path, "csv", m.names, m.lines, m.laser, m.weights)

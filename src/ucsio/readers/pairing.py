@@ -41,7 +41,7 @@ def read_map(path: str | os.PathLike) -> list[tuple[str, str, int]]:
 
 def pair(laser: LaserPoints, robot: RobotPoses, mapping=(), map_path: str | None = None):
     """(Measurement, warnings)."""
-    from ..measurement import Measurement
+    from ..method.measurement import Measurement
 
     by_name: dict[str, list[int]] = {}
     by_point: dict[str, list[int]] = {}

@@ -29,9 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..controller import ABB_SUFFIXES
 from ..errors import UcsioError
-from ..frames import Pose
+from ..geometry.frames import Pose
+from ..parsing.controller import ABB_SUFFIXES
 
 KUKA_SUFFIXES = {".dat"}
 
@@ -79,7 +79,7 @@ def _matrix(pose: Pose) -> np.ndarray:
 # ---------------------------------------------------------------- CSV
 
 def spec_csv(path: str) -> RobotPoses:
-    from ..measurement import read_measurement
+    from ..method.measurement import read_measurement
 
     m = read_measurement(path, sides=("robot",), what="robot file")
     poses = [RobotPose(n, n, ln, None, m.flange[i]) for i, (n, ln) in
@@ -90,10 +90,10 @@ def spec_csv(path: str) -> RobotPoses:
 # ---------------------------------------------------------------- KUKA
 
 def kuka_dat(path: str, config: str | None) -> RobotPoses:
-    from ..controller import load
-    from ..document import Document
-    from ..krl import positions
-    from ..measurement import flange_matrices
+    from ..parsing.controller import load
+    from ..parsing.document import Document
+    from ..parsing.krl import positions
+    from ..method.measurement import flange_matrices
 
     doc = Document.read(path)
     cfg = None
@@ -166,10 +166,10 @@ def _names(names: list[str], most: int = 8) -> str:
 # ---------------------------------------------------------------- ABB
 
 def abb_module(path: str, tool: str, wobj: str, config: str | None) -> RobotPoses:
-    from ..controller import parse
-    from ..document import Document
-    from ..measurement import flange_matrices
-    from ..rapid import robtargets
+    from ..parsing.controller import parse
+    from ..parsing.document import Document
+    from ..method.measurement import flange_matrices
+    from ..parsing.rapid import robtargets
 
     cf = parse(Document.read(path), full=True)
     targets = robtargets(cf)
@@ -207,7 +207,7 @@ class _AbbLookup:
 
     def _sources(self):
         if self._files is None:
-            from ..controller import load
+            from ..parsing.controller import load
 
             here = Path(self.cf.path)
             files = [self.cf]

@@ -20,9 +20,9 @@ import math
 import os
 from typing import Any
 
-from ..controller import ControllerFile
 from ..errors import UcsioError
-from ..frames import Frame, Pose
+from ..geometry.frames import Frame, Pose
+from ..parsing.controller import ControllerFile
 from ..values import Value
 
 WORST = 10          # the table shows the points that move most
@@ -52,13 +52,13 @@ class Found(Value):
 
 
 def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
-    """The controller files the readers search, as ``ucsio.backup.Source``s:
+    """The controller files the readers search, as ``ucsio.parsing.backup.Source``s:
     those with ``suffixes`` below ``root_of(folder parts)``'s folder, on disk
     or, for ``ARCHIVE.zip!member``, in the same archive (read in place).
     ``root_of`` maps the file's folder, as a list of path parts, to how many
     of them make the searched root. Shown paths stay as the user gave them
     (relative to the current folder where below it)."""
-    from ..backup import Source, archive_sources, split_member
+    from ..parsing.backup import Source, archive_sources, split_member
 
     member = split_member(file)
     if member is not None:
@@ -113,7 +113,7 @@ def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose]
     object frame); a measured user frame replaces the uframe, a measured
     object frame (given in its user frame, patch.measured_in_parent) the
     oframe. KUKA: the base alone."""
-    from ..patch import measured_in_parent
+    from ..review.patch import measured_in_parent
 
     mine = measured_in_parent(cf, frame, measured)
     if frame.vendor != "abb":

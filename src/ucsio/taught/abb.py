@@ -1,7 +1,7 @@
 """ABB: the robtargets that instructions move to in a work object.
 
 For every module of the file's folder (.mod .modx .sys .sysx .prg), the
-outline scanner (ucsio.rapid.outline with ``routines``) gives the routines
+outline scanner (ucsio.parsing.rapid.outline with ``routines``) gives the routines
 and the runs of declarations. A regex cuts those into statements at the
 semicolons (strings and comments skipped, as the grammar's lexer does).
 
@@ -25,14 +25,14 @@ import os
 import re
 from pathlib import Path
 
-from .. import rapid
-from ..controller import ABB_SUFFIXES, ControllerFile
-from ..document import Document, Span
-from ..errors import UcsioError
-from ..frames import Frame, Number
-from ..lalr import Rejected, Token, Tree
-from ..rotations import quat_to_matrix, matvec
 from . import Found, TaughtPoint, files_around, is_same_file, same_folder
+from ..errors import UcsioError
+from ..geometry.frames import Frame, Number
+from ..geometry.rotations import quat_to_matrix, matvec
+from ..parsing import rapid
+from ..parsing.controller import ABB_SUFFIXES, ControllerFile
+from ..parsing.document import Document, Span
+from ..parsing.lalr import Rejected, Token, Tree
 
 # One statement: everything up to the next ';' outside strings and comments.
 _STATEMENT = re.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
@@ -175,7 +175,7 @@ def _read_module(doc: Document) -> _Module:
 
 
 def _statement_parser():
-    from ..grammar import parser
+    from ..parsing.grammar import parser
     return parser("rapid", ("statements",))
 
 

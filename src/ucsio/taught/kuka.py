@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import re
 
-from .. import krl
-from ..controller import ControllerFile
-from ..document import Document
-from ..errors import UcsioError
-from ..frames import Frame
 from . import Found, TaughtPoint, files_around, is_same_file
+from ..errors import UcsioError
+from ..geometry.frames import Frame
+from ..parsing import krl
+from ..parsing.controller import ControllerFile
+from ..parsing.document import Document
 
 _BASE_ENTRY = re.compile(r"BASE_DATA\[(\d+)\]\Z", re.I)
 MAX_DEPTH = 3        # how far up from $config.dat a KRC folder is looked for

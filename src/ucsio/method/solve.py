@@ -18,7 +18,7 @@
 
 Also ``uncertainty`` (Monte Carlo through the batched solver, with a
 first-order analytical estimate alongside). Reading a SOLUTION.json back is
-``ucsio.solution`` (no numpy), re-exported here.
+``ucsio.method.solution`` (no numpy), re-exported here.
 """
 from __future__ import annotations
 
@@ -28,9 +28,10 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from . import defaults, horn
-from .errors import UcsioError
-from .frames import Pose
+from . import horn
+from .. import defaults
+from ..errors import UcsioError
+from ..geometry.frames import Pose
 from .solution import load_solution, pose_from_json
 
 DEFAULT_THRESHOLD = defaults.THRESHOLD
@@ -78,7 +79,7 @@ class Solution:
     uncertainty: dict[str, Any] | None = None
     reason: str | None = None    # why the dataset was rejected (None when accepted)
     precision: dict[str, Any] | None = None  # the determinacy gate's numbers (SPEC point 7)
-    tcp_solved: dict[str, Any] | None = None  # --tcp solve: x, y, z, std (ucsio.tcp_solve)
+    tcp_solved: dict[str, Any] | None = None  # --tcp solve: x, y, z, std (ucsio.method.tcp_solve)
     diagnosis: dict[str, Any] | None = None   # a rejection a TCP change explains (tcp_solve)
 
     def __post_init__(self) -> None:
@@ -288,7 +289,7 @@ def _unusable(d: Dataset) -> UcsioError | None:
 
 def _precision(data: Sequence[Dataset], final: dict[int, tuple],
                used: dict[int, np.ndarray]) -> dict[int, dict[str, Any]]:
-    """The determinacy gate's numbers (``ucsio.precision``) for every final
+    """The determinacy gate's numbers (``ucsio.method.precision``) for every final
     fit, in one batched call: ``precision`` with sigma, angle_std, reach,
     at_reach, plus the rejection reason where at_reach exceeds the threshold."""
     from . import precision as prec
@@ -346,7 +347,7 @@ def _solve_many(data: Sequence[Dataset]) -> list:
     Each round fits every still-active dataset and all its leave-one-out
     subsets in one batched Horn call; the exclusion rule then runs per
     dataset on those numbers. Rounds = 1 + the most points any dataset
-    excludes. Returns, per dataset, a ``ucsio.solve.Solution`` or the
+    excludes. Returns, per dataset, a ``ucsio.method.solve.Solution`` or the
     ``UcsioError`` that ``solve_points`` would have raised."""
     results: list = [None] * len(data)
     used: dict[int, np.ndarray] = {}

@@ -17,11 +17,11 @@ import difflib
 import os
 from typing import Any
 
-from .controller import ControllerFile, load, parse
+from ..errors import UcsioError
+from ..geometry.frames import Frame, Pose
+from ..parsing.controller import ControllerFile, load, parse
+from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
-from .document import Document, text_lines
-from .errors import UcsioError
-from .frames import Frame, Pose
 from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
 
 

@@ -42,13 +42,13 @@ import struct
 from pathlib import Path
 from typing import Any
 
-from . import rotations as rot
-from .controller import ABB_SUFFIXES, ControllerFile, parse
-from .document import Document, Edit, Span, looks_binary, text_lines
-from .errors import UcsioError
-from .files import atomic_write, write_target
-from .frames import Frame, Number, Pose
-from .values import Value
+from ..errors import UcsioError
+from ..files import atomic_write, write_target
+from ..geometry import rotations as rot
+from ..geometry.frames import Frame, Number, Pose
+from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
+from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
+from ..values import Value
 
 # Written precision (decimals) and half a step: what "unchanged" means.
 TRANS_DECIMALS = 3
@@ -365,7 +365,7 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
                         load=None) -> list[dict]:
     """Other modules in the same folder that declare the same RAPID PERS.
     ``load(path)``: how a sibling module is read (default
-    ``ucsio.controller.load``; ``batch`` passes its cache, so a folder's
+    ``ucsio.parsing.controller.load``; ``batch`` passes its cache, so a folder's
     modules are parsed once per run, not once per patched frame)."""
     storage = str(frame.info.get("storage") or "").upper()
     if frame.vendor != "abb" or "PERS" not in storage.split() or "LOCAL" in storage.split():
@@ -377,7 +377,7 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
     except OSError:
         return []
     if load is None:
-        from .controller import load
+        from ..parsing.controller import load
     found = []
     key = frame.name.casefold()
     try:

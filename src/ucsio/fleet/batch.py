@@ -9,7 +9,7 @@ The flow, each step callable on its own:
   [[entry]] is that entry's ``problem``, reported as its error).
 - ``run_batch(manifest)``: per entry, read the measurement and the
   controller's simulated frame (each file parsed once, cached by path), solve
-  every dataset (``solve_many``: the method of ``ucsio.solve``, batched: one
+  every dataset (``solve_many``: the method of ``ucsio.method.solve``, batched: one
   Horn call per exclusion round for all entries together, each entry's full
   fit and its leave-one-out fits stacked in it), diff against the simulated
   frame; optionally the Monte Carlo uncertainty and patched copies of the
@@ -37,12 +37,12 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from .defaults import MIN_POINTS, REACH, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
-from .diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
-from .errors import UcsioError
-from .files import atomic_write_text, read_bytes
-from .frames import Pose, tool_tcp
-from .solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
+from ..defaults import MIN_POINTS, REACH, SIGMA_LASER, SIGMA_ROBOT, THRESHOLD
+from ..errors import UcsioError
+from ..files import atomic_write_text, read_bytes
+from ..geometry.frames import Pose, tool_tcp
+from ..review.diff import DEFAULT_TOLERANCE, GROUP_BOUNDS, frame_delta
+from ..method.solve import Dataset, solve_many  # noqa: F401  (re-exported: batch is where fleets are solved)
 
 N_GROUPS = len(GROUP_BOUNDS) + 1
 # folders that name a part of a backup, not a station (a station's default name is above them)
@@ -107,7 +107,7 @@ def _resolve(base: Path, rel: str) -> str:
 def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> dict:
     unknown = [k for k in table if k not in allowed]
     if unknown:
-        from .errors import did_you_mean
+        from ..errors import did_you_mean
         raise UcsioError(f"{where}: unknown key{'s' if len(unknown) > 1 else ''} "
                          f"{', '.join(map(repr, unknown))}{did_you_mean(unknown[0], allowed)} "
                          f"(allowed: {', '.join(allowed)})", file=path)
@@ -259,7 +259,7 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
     base = Path(path).resolve().parent
     top_unknown = [k for k in data if k not in ("defaults", "entry")]
     if top_unknown:
-        from .errors import did_you_mean
+        from ..errors import did_you_mean
         raise UcsioError(f"unknown top-level key(s) {', '.join(map(repr, top_unknown))}"
                          f"{did_you_mean(top_unknown[0], ('defaults', 'entry'))} "
                          "(a manifest has [defaults] and [[entry]] tables)", file=path)
@@ -298,7 +298,7 @@ def read_manifest(path: str | os.PathLike) -> Manifest:
 @dataclass
 class EntryResult:
     entry: Entry
-    solution: Any = None              # ucsio.solve.Solution
+    solution: Any = None              # ucsio.method.solve.Solution
     simulated: Pose | None = None
     measured: Pose | None = None      # in the frame's own parent (differs from the fit for oframe)
     delta: dict | None = None
@@ -458,11 +458,11 @@ class _Cache:
         return got
 
     def controller(self, path: str):
-        from .controller import load
+        from ..parsing.controller import load
         return self._get(self.controllers, path, load)
 
     def measurement(self, path: str):
-        from .measurement import read_measurement
+        from ..method.measurement import read_measurement
         return self._get(self.measurements, path, read_measurement)
 
     def paired(self, sources: dict):
@@ -470,7 +470,7 @@ class _Cache:
         key = tuple(sorted(sources.items()))
 
         def read(_):
-            from .readers import laser, pairing, robot
+            from ..readers import laser, pairing, robot
             lp = laser.read_laser(sources["laser"], sources.get("laser_units", "mm"))
             rp = robot.read_robot(sources["robot"], config=sources.get("config"),
                                   tool=sources.get("robot_tool", "tool0"),
@@ -482,7 +482,7 @@ class _Cache:
 
 def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float):
     """An entry with tcp = "solve": its Solution, or the UcsioError."""
-    from .tcp_solve import solve_joint
+    from ..method.tcp_solve import solve_joint
     try:
         return solve_joint(meas, threshold=en.threshold, min_points=en.min_points,
                            exclude=en.exclude, no_exclusion=en.no_exclusion, reach=en.reach,
@@ -494,7 +494,7 @@ def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float):
 def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> None:
     """A rejected fixed-TCP entry whose residuals a TCP change explains says
     so in its reason (tcp_solve.diagnose), as ``solve`` does."""
-    from .tcp_solve import diagnose
+    from ..method.tcp_solve import diagnose
     found = diagnose(meas, sol, threshold=en.threshold, min_points=en.min_points,
                      no_exclusion=en.no_exclusion, reach=en.reach, sigma_laser=sigma_laser,
                      sigma_robot=sigma_robot)
@@ -512,7 +512,7 @@ def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
     """The fit is the UCS in robot world; express it where the frame is given
     (an ABB object frame: in its user frame). A frame relative to something
     else (a flange, a machine) cannot be compared with a measured UCS."""
-    from .patch import measured_in_parent, reference_problem
+    from ..review.patch import measured_in_parent, reference_problem
 
     why = reference_problem(cf, frame)
     if why and frame.reference != "unknown":  # pose data, plain FRAME variables: as given
@@ -530,8 +530,8 @@ def _entry_uncertainty(r: EntryResult, meas, cf, frame, n: int, sigma_laser: flo
     every sample pose, and with them std and ci95, are in the same
     coordinates as the frame; the noise is isotropic, so its model is the
     same in either axes, and the angle (a magnitude) does not change."""
-    from .patch import measured_in_parent
-    from .solve import residual_sigma, solution_uncertainty, uncertainty
+    from ..review.patch import measured_in_parent
+    from ..method.solve import residual_sigma, solution_uncertainty, uncertainty
 
     sol = r.solution
     ident = Pose.from_quat(0.0, 0.0, 0.0, (1.0, 0.0, 0.0, 0.0))
@@ -563,7 +563,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     owners: list[int] = []
     frames: dict[int, Any] = {}
     read: dict[int, tuple] = {}         # entry index -> (tcp, measurement): run-local state
-    joint: list[int] = []               # entries with tcp = "solve" (ucsio.tcp_solve)
+    joint: list[int] = []               # entries with tcp = "solve" (ucsio.method.tcp_solve)
     total = len(results)
     for k, r in enumerate(results):
         en = r.entry
@@ -670,7 +670,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
 def _taught_points(results: list[EntryResult], frames: dict) -> None:
     """``points = true``: how far the taught points of each accepted entry's
     frame move (ucsio.taught); each frame's points are found once per run."""
-    from .taught import find_points, points_moved
+    from ..taught import find_points, points_moved
 
     found: dict[int, Any] = {}
     files: dict = {}            # each module or .dat read once per run
@@ -695,16 +695,16 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
     *passing* entry's frame is written with its measured value (a rejected
     dataset or a frame over tolerance is for a person to look at first); a
     file with several passing entries gets all of them in one copy. Each
-    frame goes through ``ucsio.patch.patch_frame`` for its refusals (the
+    frame goes through ``ucsio.review.patch.patch_frame`` for its refusals (the
     sibling modules of a shared-PERS check read through ``cache``, so each
     file is parsed once per run); the copy with all of a file's frames
     applied is parsed once and every frame must read back from it
-    (``ucsio.patch.verify``). A refusal is the entry's ``patch_error``, and
+    (``ucsio.review.patch.verify``). A refusal is the entry's ``patch_error``, and
     that file's copy is not written (the file's other entries get a
     ``patch_error`` naming the refused one). The copy is not written either
     when the source file changed on disk since it was read (its bytes are
     what was patched): every entry of that file gets the ``patch_error``."""
-    from . import patch as patcher
+    from ..review import patch as patcher
 
     def load(p) -> Any:     # a sibling module, through the run's cache
         return cache.controller(os.path.normpath(os.fspath(p)))
@@ -775,11 +775,11 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
 
 def _verify_combined(cf, new: bytes, planned) -> None:
     """Parse the bytes with all of a file's patches applied, once, and check
-    every frame reads back from them (``ucsio.patch.verify`` on that parse:
+    every frame reads back from them (``ucsio.review.patch.verify`` on that parse:
     ``patch_frame`` was told not to parse each frame's copy alone)."""
-    from . import patch as patcher
-    from .controller import parse
-    from .document import Document
+    from ..review import patch as patcher
+    from ..parsing.controller import parse
+    from ..parsing.document import Document
 
     try:
         again = parse(Document(new, cf.path))

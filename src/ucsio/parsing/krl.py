@@ -7,7 +7,7 @@ grammar:
 
 - ``full=True`` (``ucsio check``): every byte of the file goes through the
   grammar (start symbol ``file``) first, so a syntax error anywhere is found:
-  the recogniser (ucsio.lalr: the grammar's LALR table and lexer, no
+  the recogniser (ucsio.parsing.lalr: the grammar's LALR table and lexer, no
   tree), then the fast path below for the frames. Where the recogniser
   rejects, ``parse_whole`` (the tree of every byte) gives the positioned
   error.
@@ -48,12 +48,12 @@ import functools
 import re
 from typing import Any
 
+from ..errors import MAX_NESTING, TooDeep, UcsioError
+from ..geometry.frames import Frame, Number, Pose
+from ..values import Value
 from .controller import ControllerFile
 from .document import Document, Span
-from .errors import MAX_NESTING, TooDeep, UcsioError
-from .frames import Frame, Number, Pose
 from .lalr import Rejected, Token, Tree
-from .values import Value
 
 VENDOR = "kuka"
 START = ("file",)
@@ -600,7 +600,7 @@ def _interpret(doc: Document, stmts, tree) -> ControllerFile:
 
 
 def parse_whole(doc: Document) -> ControllerFile:
-    """``parse(doc, full=True)`` from the tree of every byte (ucsio.lalr
+    """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
     against, and the way to the exact message when it rejects a file."""
     text = _lines(doc)
@@ -609,7 +609,7 @@ def parse_whole(doc: Document) -> ControllerFile:
 
 
 def _recognise(text: str) -> None:
-    """Every byte through the grammar (ucsio.lalr.Parser.recognise), a
+    """Every byte through the grammar (ucsio.parsing.lalr.Parser.recognise), a
     structure literal read in one step; Rejected if not KRL. Tokens the
     interpretation of the whole tree would refuse (an INT beyond 32 bits, a
     reserved word as a type name) reject too: the whole tree says where."""

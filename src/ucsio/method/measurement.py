@@ -34,10 +34,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .defaults import MAX_MAGNITUDE
-from .errors import UcsioError
-from .files import read_bytes
-from .readers.text import decode
+from ..defaults import MAX_MAGNITUDE
+from ..errors import UcsioError
+from ..files import read_bytes
+from ..readers.text import decode
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),

@@ -10,10 +10,10 @@ import math
 import os
 from typing import Any
 
-from . import rotations as rot
-from .errors import RejectedDataset, UcsioError
-from .files import read_bytes
-from .frames import Pose
+from ..errors import RejectedDataset, UcsioError
+from ..files import read_bytes
+from ..geometry import rotations as rot
+from ..geometry.frames import Pose
 
 
 def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose:

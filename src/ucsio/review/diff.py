@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import math
 
-from . import defaults
-from .frames import Pose
-from .rotations import canonical_abc, quat_angle, wrap180
+from .. import defaults
+from ..geometry.frames import Pose
+from ..geometry.rotations import canonical_abc, quat_angle, wrap180
 
 DEFAULT_TOLERANCE = defaults.TOLERANCE
 GROUP_BOUNDS = (10.0, 25.0, 50.0, 100.0)   # mm; group k is below GROUP_BOUNDS[k-1]

@@ -55,7 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import UcsioError
+from ..errors import UcsioError
 
 # Status codes, one per batch item.
 OK = 0

@@ -9,8 +9,8 @@ from __future__ import annotations
 from typing import Any
 
 from . import rotations as rot
-from .document import Document, Span
-from .values import Value
+from ..parsing.document import Document, Span
+from ..values import Value
 
 
 class Pose(Value):
@@ -140,7 +140,7 @@ def tool_tcp(frame: Frame, what: str = "tool") -> tuple[float, float, float]:
     """The TCP a robot-held tool gives a measurement: its translation in
     flange coordinates. A stationary or external tool, or one without a
     complete value, is refused (``what`` names the option in the message)."""
-    from .errors import UcsioError
+    from ..errors import UcsioError
 
     if frame.info.get("robhold") is False or frame.reference != "flange":
         raise UcsioError(f"{what}: {frame.name} is not a robot-held tool (reference "
@@ -149,7 +149,7 @@ def tool_tcp(frame: Frame, what: str = "tool") -> tuple[float, float, float]:
     if frame.pose is None:
         raise UcsioError(f"{what}: {frame.name} has no complete value", file=frame.file,
                          line=frame.line)
-    from .defaults import MAX_MAGNITUDE
+    from ..defaults import MAX_MAGNITUDE
     if any(abs(v) > MAX_MAGNITUDE for v in frame.pose.t):
         raise UcsioError(f"{what}: {frame.name}'s TCP {frame.pose.t} is too large for a fit "
                          f"(at most {MAX_MAGNITUDE:.0e} mm)", file=frame.file, line=frame.line)

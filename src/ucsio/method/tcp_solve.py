@@ -40,9 +40,10 @@ from typing import Any, Iterable
 
 import numpy as np
 
-from . import defaults, horn
-from .errors import UcsioError
-from .frames import Pose
+from . import horn
+from .. import defaults
+from ..errors import UcsioError
+from ..geometry.frames import Pose
 from .precision import residual_sigma, skew
 
 MAX_ITERATIONS = 50

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import os
 
-from .errors import UcsioError
-from .values import Value
+from ..errors import UcsioError
+from ..values import Value
 
 # SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
 BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat")
@@ -36,7 +36,7 @@ class Source(Value):
 
     def read(self) -> bytes:
         if self.archive is None:
-            from .files import read_bytes
+            from ..files import read_bytes
             return read_bytes(self.path, "controller file")
         return _read_member(self.archive, self.member, self.name)
 

@@ -5,17 +5,17 @@ contextual lexer a regular expression per parser state, and its tree
 builder the shape of each rule's node (which tokens are kept, which
 ``_rule`` children are spliced in, which ``?rule`` nodes stand for their
 only child). ``tables_from_lark`` copies exactly that into plain data, which
-ucsio.grammar caches on disk; this module reads it without importing Lark
+ucsio.parsing.grammar caches on disk; this module reads it without importing Lark
 (a command that reads one file starts in a blink), and drives it two ways:
 
 - ``parse``: tokens and a tree shaped as Lark shapes it (Tree.data,
   .children; Token, a str with .type, .value, .start_pos, .end_pos);
 - ``recognise`` (``check``): the same moves keeping only the state stack, no
   token or node made; a literal robtarget/E6POS value can be fed as one
-  NUMBER (``shortcuts``, see ucsio.rapid and ucsio.krl).
+  NUMBER (``shortcuts``, see ucsio.parsing.rapid and ucsio.parsing.krl).
 
 Either says only *whether* a text is in the language: on rejection the
-caller asks Lark itself for the positioned error (ucsio.grammar), so
+caller asks Lark itself for the positioned error (ucsio.parsing.grammar), so
 messages stay Lark's. tests/test_lalr.py checks that trees, acceptance and
 rejection are Lark's, on the corpus and on generated and mutated files.
 """
@@ -84,7 +84,7 @@ class Tree:
                 yield node
 
 
-# -- the tables, from Lark (ucsio.grammar calls this when its cache is cold) -----------
+# -- the tables, from Lark (ucsio.parsing.grammar calls this when its cache is cold) -----------
 def tables_from_lark(lark) -> dict:
     """Plain data (dicts, lists, strings, ints: marshal-able) with everything
     a Parser needs, read from a Lark object built with parser="lalr",

@@ -1,4 +1,4 @@
-"""The grammars that ship with ucsio, compiled by Lark, run by ucsio.lalr.
+"""The grammars that ship with ucsio, compiled by Lark, run by ucsio.parsing.lalr.
 
 The grammars are data (grammars/*.lark at the top of the repository, copied
 into the wheel as ucsio/grammars). Lark compiles each into LALR tables once
@@ -19,11 +19,11 @@ from . import lalr
 
 
 def grammar_dir() -> Path:
-    here = Path(__file__).resolve().parent
-    inside = here / "grammars"          # installed wheel
+    package = Path(__file__).resolve().parent.parent     # .../ucsio
+    inside = package / "grammars"                        # installed wheel
     if inside.is_dir():
         return inside
-    return here.parent.parent / "grammars"  # source checkout / editable install
+    return package.parent.parent / "grammars"            # source checkout / editable install
 
 
 class SyntaxFailure(Exception):
@@ -116,7 +116,7 @@ def lark_parser(name: str, start: tuple[str, ...]):
 
 
 def from_lark(tree) -> lalr.Tree:
-    """A Lark tree as ucsio.lalr's Tree and Token (no recursion)."""
+    """A Lark tree as ucsio.parsing.lalr's Tree and Token (no recursion)."""
     from lark import Tree as LarkTree
 
     def convert(node):

@@ -41,9 +41,9 @@ import math
 import os
 from typing import Any, Sequence
 
-from . import defaults
-from .diff import GROUP_BOUNDS
-from .output import fmt
+from .. import defaults
+from ..output import fmt
+from ..review.diff import GROUP_BOUNDS
 
 GROUP_COLORS = ("#2e7d32", "#7cb342", "#f9a825", "#ef6c00", "#c62828")
 GROUP_WORDS = ("small", "moderate", "large", "very large", "extreme")
@@ -874,9 +874,9 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
 def write_report(result, path: str, csv: str | None = None) -> None:
     """Write the report of a ``BatchResult`` (atomically); ``csv``: the CSV
     written beside it, linked from the report."""
-    from . import __version__
-    from .files import atomic_write_text
-    from .output import _clean
+    from .. import __version__
+    from ..files import atomic_write_text
+    from ..output import _clean
 
     data = _clean(result.as_dict())
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0)

@@ -8,10 +8,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ..errors import UcsioError
+from ..geometry.frames import Frame
+from ..values import Value
 from .document import Document, looks_binary
-from .errors import UcsioError
-from .frames import Frame
-from .values import Value
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
@@ -98,7 +98,7 @@ class ControllerFile:
         """The frame called ``name`` (case-insensitive; KUKA labels too)."""
         found = self.matches(name)
         if not found:
-            from .errors import did_you_mean
+            from ..errors import did_you_mean
             names = [f.name for f in self.frames] + [f.label for f in self.frames if f.label]
             hint = did_you_mean(name.strip(), names)
             raise UcsioError(f"no frame named {name!r}{hint} (ucsio frames lists them)",

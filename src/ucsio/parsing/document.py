@@ -17,9 +17,9 @@ from __future__ import annotations
 import bisect
 import os
 
-from .errors import UcsioError
-from .files import read_bytes
-from .values import Value
+from ..errors import UcsioError
+from ..files import read_bytes
+from ..values import Value
 
 BOM = b"\xef\xbb\xbf"
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .backup import Failure, Source, expand
-from .errors import UcsioError
+from ..errors import UcsioError
+from ..parsing.backup import Failure, Source, expand
 
 
 def _sources(path: str) -> list[Source]:
@@ -63,7 +63,7 @@ def _frame_names(src: Source, errors: list) -> list[str]:
 
 
 def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
-    from .review import diff_files, lines_changed_beyond_frames
+    from .compare import diff_files, lines_changed_beyond_frames
 
     olds, news = pair(_sources(old_path), _sources(new_path))
     errors: list[UcsioError] = []
@@ -87,8 +87,8 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
         if old_bytes == new_bytes:
             unchanged_files += 1
             continue
-        from .controller import parse
-        from .document import Document
+        from ..parsing.controller import parse
+        from ..parsing.document import Document
         try:
             ocf = parse(Document(old_bytes, o.name))
             ncf = parse(Document(new_bytes, n.name))
@@ -136,7 +136,7 @@ def _n(count: int, what: str) -> str:
 def format_backup_diff(result: dict[str, Any]) -> str:
     """Summary first (what a reviewer needs in ten seconds), then files added
     and removed, then each changed file with its frames."""
-    from .review import change_lines
+    from .compare import change_lines
 
     fa, fr, fc = result["files_added"], result["files_removed"], result["files_changed"]
     total = len(fa) + len(fr) + len(fc) + result["files_unchanged"]

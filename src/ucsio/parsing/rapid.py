@@ -3,7 +3,7 @@
 Two ways through the same grammar:
 
 - ``full=True`` (``ucsio check``): every byte of the file goes through the
-  grammar's LALR table and lexer (ucsio.lalr's recogniser: Lark's tables,
+  grammar's LALR table and lexer (ucsio.parsing.lalr's recogniser: Lark's tables,
   no tree), then the fast path below reads the frames, and every other
   declaration is listed from its words (its value parsed only if read).
   Where the recogniser rejects, ``parse_whole`` (the tree of every byte)
@@ -25,13 +25,13 @@ import bisect
 import functools
 import re
 
+from ..errors import MAX_NESTING, TooDeep, UcsioError
+from ..geometry.frames import Frame, Number, Pose
+from ..values import Value
 from .controller import ControllerFile
 from .document import Document, Span
-from .errors import MAX_NESTING, TooDeep, UcsioError
-from .frames import Frame, Number, Pose
 from .grammar import grammar_dir
 from .lalr import Token, Tree
-from .values import Value
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
@@ -765,7 +765,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
 
 
 def parse_whole(doc: Document) -> ControllerFile:
-    """``parse(doc, full=True)`` from the tree of every byte (ucsio.lalr
+    """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
     against, and the way to the exact message when it rejects a file."""
     outline(doc)
@@ -782,7 +782,7 @@ def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
 
 # -- check: the recogniser and the declarations the fast path leaves out -----------
 def _recognise(text: str) -> None:
-    """Every byte through the grammar (ucsio.lalr.Parser.recognise); Rejected if not RAPID."""
+    """Every byte through the grammar (ucsio.parsing.lalr.Parser.recognise); Rejected if not RAPID."""
     global _SHORTCUTS
     parser = _parser()
     if _SHORTCUTS is None:

@@ -1,0 +1,1 @@
+"""Many cells at once: the batch run and its report."""

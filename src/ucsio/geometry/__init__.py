@@ -1,0 +1,1 @@
+"""Frame algebra in one place: poses, the vendors' rotation conventions (plain math)."""
