@@ -45,6 +45,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))   # this checkout's ucsio, not an installed one
 
 from ucsio.errors import UcsioError  # noqa: E402
+from ucsio.geometry import arrays  # noqa: E402
 from ucsio.method import horn  # noqa: E402
 from ucsio.method.measurement import read_measurement  # noqa: E402
 from ucsio.method.solve import solve_points, uncertainty  # noqa: E402
@@ -176,7 +177,7 @@ def main(argv=None) -> int:
     loop, loop_median = min(loop_times), statistics.median(loop_times)
     loop_total = loop * args.sets / n_loop
 
-    dR = horn.rotation_angle_deg(res.R[:n_loop], R_ref).max()
+    dR = arrays.rotation_angle_deg(res.R[:n_loop], R_ref).max()
     dt = np.abs(res.t[:n_loop] - t_ref).max()
     print()
     print(f"{args.sets:,} sets of 8 point pairs")

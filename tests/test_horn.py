@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from ucsio.geometry import arrays
 from ucsio.method import horn
 from ucsio.geometry import rotations as rot
 from ucsio.errors import UcsioError
@@ -17,7 +18,7 @@ def fixture_points(rng, n=8, size=(1200.0, 800.0, 300.0)):
 
 
 def angle_deg(R1, R2):
-    return float(horn.rotation_angle_deg(np.asarray(R1), np.asarray(R2)))
+    return float(arrays.rotation_angle_deg(np.asarray(R1), np.asarray(R2)))
 
 
 def make_truth(rng, kind):
@@ -212,7 +213,7 @@ def test_spreads_are_principal_rms_extents():
 
 def test_quat_to_matrix_matches_scipy():
     r = Rotation.random(100, random_state=15)
-    np.testing.assert_allclose(horn.quat_to_matrix(r.as_quat(scalar_first=True)), r.as_matrix(),
+    np.testing.assert_allclose(arrays.quat_to_matrix(r.as_quat(scalar_first=True)), r.as_matrix(),
                                atol=1e-15)
 
 
@@ -241,7 +242,7 @@ def eigh_reference(laser, robot, w):
     N[:, 3] = np.stack([S[:, 0, 1] - S[:, 1, 0], S[:, 2, 0] + S[:, 0, 2],
                         S[:, 1, 2] + S[:, 2, 1], -S[:, 0, 0] - S[:, 1, 1] + S[:, 2, 2]], -1)
     values, vectors = np.linalg.eigh(N)
-    return values, horn.quat_to_matrix(vectors[:, :, 3])
+    return values, arrays.quat_to_matrix(vectors[:, :, 3])
 
 
 @pytest.mark.parametrize("kind", ["random", "near180", "gimbal"])
@@ -264,7 +265,7 @@ def test_closed_form_eigenvector_equals_eigh(kind):
         values, R_ref = eigh_reference(laser, robot, w)
         ok = res.ok                                        # a few random triangles are slivers
         assert ok.sum() >= 0.95 * B and (res.status[~ok] == horn.COLLINEAR).all()
-        assert horn.rotation_angle_deg(res.R[ok], R_ref[ok]).max() <= 1e-9
+        assert arrays.rotation_angle_deg(res.R[ok], R_ref[ok]).max() <= 1e-9
         np.testing.assert_allclose(res.lambda_m, values[:, 3], rtol=1e-11)
 
 
@@ -289,7 +290,7 @@ def test_near_tie_falls_back_to_eigh(monkeypatch):
     res = horn.horn_batch(L, R)
     assert decided == [1]                                  # the tied set only
     assert res.status.tolist() == [horn.OK, horn.OK]
-    assert horn.rotation_angle_deg(res.R, R_ref).max() <= 1e-9
+    assert arrays.rotation_angle_deg(res.R, R_ref).max() <= 1e-9
 
 
 def test_chunks_give_the_same_fits(monkeypatch):

@@ -344,3 +344,34 @@ def test_fanuc_vs_robodk():
         w, p, rr = rot.matrix_to_wpr(as_t(m))
         H = robomath.Fanuc_2_Pose([0, 0, 0, w, p, rr])
         np.testing.assert_allclose(np.array(H.rows)[:3, :3], m, atol=1e-12)
+
+
+# -- the same conventions over arrays (ucsio.geometry.arrays) ---------------------
+def test_array_conventions_vs_scipy_and_the_single_pose_forms():
+    from ucsio.geometry import arrays
+
+    rng = np.random.default_rng(7)
+    r = Rotation.random(200, random_state=rng)
+    abc = r.as_euler("ZYX", degrees=True)
+    np.testing.assert_allclose(arrays.abc_to_matrices(abc), r.as_matrix(), atol=1e-12)
+    q = r.as_quat(scalar_first=True) * rng.uniform(0.5, 2.0, (200, 1))   # not normalised
+    np.testing.assert_allclose(arrays.quats_to_matrices(q), r.as_matrix(), atol=1e-12)
+    np.testing.assert_allclose(arrays.quat_to_matrix(r.as_quat(scalar_first=True)),
+                               r.as_matrix(), atol=1e-12)
+    for k in range(0, 200, 40):
+        np.testing.assert_allclose(arrays.abc_to_matrices(abc[k:k + 1])[0],
+                                   np.array(rot.abc_to_matrix(*abc[k])), atol=1e-12)
+    # FANUC W, P, R: fixed axes x, y, z, i.e. Rz(R) Ry(P) Rx(W)
+    wpr = abc[:, ::-1]
+    pos = rng.normal(0, 500, (200, 3))
+    T = arrays.flange_matrices("fanuc", wpr, pos)
+    np.testing.assert_allclose(T[:, :3, :3], Rotation.from_euler("xyz", wpr, degrees=True).as_matrix(),
+                               atol=1e-12)
+    np.testing.assert_array_equal(T[:, :3, 3], pos)
+    np.testing.assert_array_equal(T[:, 3], np.tile([0, 0, 0, 1.0], (200, 1)))
+    theta = Rotation.random(50, random_state=rng).as_rotvec()
+    np.testing.assert_allclose(arrays.rotvecs_to_matrices(theta),
+                               Rotation.from_rotvec(theta).as_matrix(), atol=1e-12)
+    a, b = Rotation.random(50, random_state=rng), Rotation.random(50, random_state=rng)
+    np.testing.assert_allclose(arrays.rotation_angle_deg(a.as_matrix(), b.as_matrix()),
+                               np.degrees((a.inv() * b).magnitude()), atol=1e-9)

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+from ucsio.geometry import arrays
 from ucsio.method import horn
 from ucsio.cli import main
 from ucsio.errors import UcsioError
@@ -153,7 +154,7 @@ def test_kuka_example_recovers_ground_truth():
     f = sol.pose
     assert np.linalg.norm(np.subtract(f.t, [KUKA_TRUTH[k] for k in "xyz"])) < 0.1
     truth = Rotation.from_euler("ZYX", [KUKA_TRUTH[k] for k in "abc"], degrees=True)
-    assert horn.rotation_angle_deg(np.array(f.matrix), truth.as_matrix()) < 0.01
+    assert arrays.rotation_angle_deg(np.array(f.matrix), truth.as_matrix()) < 0.01
 
 
 # ------------------------------------------------------------------ JSON

@@ -15,7 +15,7 @@ from scipy.spatial.transform import Rotation
 from ucsio.method import tcp_solve
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.method.horn import rotation_angle_deg
+from ucsio.geometry.arrays import rotation_angle_deg
 from ucsio.method.measurement import Measurement
 from ucsio.method.solve import solve
 

@@ -56,6 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import UcsioError
+from ..geometry.arrays import quat_to_matrix
 
 # Status codes, one per batch item.
 OK = 0
@@ -179,22 +180,6 @@ class Sums:
                     M=self.M - g * d_l[:, :, None] * d_r[:, None, :],
                     C_l=self.C_l - g * d_l[:, :, None] * d_l[:, None, :],
                     G_r=self.G_r - g[:, 0, 0] * np.einsum("ki,ki->k", d_r, d_r))
-
-
-def quat_to_matrix(q: np.ndarray) -> np.ndarray:
-    """(..., 4) unit quaternions (w, x, y, z) -> (..., 3, 3) rotation matrices."""
-    q0, qx, qy, qz = np.moveaxis(np.asarray(q, dtype=float), -1, 0)
-    R = np.empty(q0.shape + (3, 3))
-    R[..., 0, 0] = q0 * q0 + qx * qx - qy * qy - qz * qz
-    R[..., 0, 1] = 2 * (qx * qy - q0 * qz)
-    R[..., 0, 2] = 2 * (qx * qz + q0 * qy)
-    R[..., 1, 0] = 2 * (qy * qx + q0 * qz)
-    R[..., 1, 1] = q0 * q0 - qx * qx + qy * qy - qz * qz
-    R[..., 1, 2] = 2 * (qy * qz - q0 * qx)
-    R[..., 2, 0] = 2 * (qz * qx - q0 * qy)
-    R[..., 2, 1] = 2 * (qz * qy + q0 * qx)
-    R[..., 2, 2] = q0 * q0 - qx * qx - qy * qy + qz * qz
-    return R
 
 
 def _points_and_weights(r_l, r_r, w):
@@ -473,14 +458,3 @@ def absolute_orientation(r_l, r_r, w=None) -> HornFit:
         raise UcsioError(res.reason(0))
     return HornFit(q=res.q[0], R=res.R[0], t=res.t[0], lambda_m=float(res.lambda_m[0]),
                    spread=res.spread[0])
-
-
-def rotation_angle_deg(R_a: np.ndarray, R_b: np.ndarray) -> np.ndarray:
-    """Angle (deg) of the rotation between R_a (..., 3, 3) and R_b, accurate
-    near 0 and 180 deg (atan2 of sine and cosine parts of R_a^T R_b)."""
-    D = np.einsum("...ji,...jk->...ik", R_a, R_b)
-    cos = (np.trace(D, axis1=-2, axis2=-1) - 1.0) / 2.0
-    axis = np.stack([D[..., 2, 1] - D[..., 1, 2], D[..., 0, 2] - D[..., 2, 0],
-                     D[..., 1, 0] - D[..., 0, 1]], axis=-1)
-    sin = np.linalg.norm(axis, axis=-1) / 2.0
-    return np.degrees(np.arctan2(sin, cos))

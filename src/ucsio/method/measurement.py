@@ -37,6 +37,7 @@ import numpy as np
 from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
 from ..files import read_bytes
+from ..geometry.arrays import flange_matrices
 from ..readers.text import decode
 
 FORMS = {
@@ -91,48 +92,6 @@ class Measurement:
         given in flange coordinates."""
         tcp = np.asarray(tcp, dtype=float).reshape(3)
         return self.flange[:, :3, :3] @ tcp + self.flange[:, :3, 3]
-
-
-# ---------------------------------------------------------------- rotations
-
-def abc_to_matrices(abc: np.ndarray) -> np.ndarray:
-    """(n, 3) KUKA A, B, C (deg) -> (n, 3, 3): Rz(A) Ry(B) Rx(C)."""
-    a, b, c = np.radians(np.asarray(abc, dtype=float)).T
-    ca, sa, cb, sb, cc, sc = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(c), np.sin(c)
-    R = np.empty(a.shape + (3, 3))
-    R[:, 0, 0] = ca * cb
-    R[:, 0, 1] = ca * sb * sc - sa * cc
-    R[:, 0, 2] = ca * sb * cc + sa * sc
-    R[:, 1, 0] = sa * cb
-    R[:, 1, 1] = sa * sb * sc + ca * cc
-    R[:, 1, 2] = sa * sb * cc - ca * sc
-    R[:, 2, 0] = -sb
-    R[:, 2, 1] = cb * sc
-    R[:, 2, 2] = cb * cc
-    return R
-
-
-def quats_to_matrices(q: np.ndarray) -> np.ndarray:
-    """(n, 4) quaternions (q1 real) -> (n, 3, 3), normalising first."""
-    from .horn import quat_to_matrix
-    q = np.asarray(q, dtype=float)
-    return quat_to_matrix(q / np.linalg.norm(q, axis=1, keepdims=True))
-
-
-def flange_matrices(form: str, orientation: np.ndarray, position: np.ndarray) -> np.ndarray:
-    if form == "kuka":
-        R = abc_to_matrices(orientation)
-    elif form == "fanuc":
-        R = abc_to_matrices(np.asarray(orientation, dtype=float)[:, ::-1])   # W,P,R -> A=R, B=P, C=W
-    elif form == "abb":
-        R = quats_to_matrices(orientation)
-    else:
-        raise ValueError(form)
-    T = np.zeros((len(R), 4, 4))
-    T[:, :3, :3] = R
-    T[:, :3, 3] = position
-    T[:, 3, 3] = 1.0
-    return T
 
 
 # ---------------------------------------------------------------- reading

@@ -31,6 +31,7 @@ import numpy as np
 from . import horn
 from .. import defaults
 from ..errors import UcsioError
+from ..geometry.arrays import rotation_angle_deg
 from ..geometry.frames import Pose
 from .solution import load_solution, pose_from_json
 
@@ -141,6 +142,39 @@ def leave_one_out(laser: np.ndarray, robot: np.ndarray, weights: np.ndarray) -> 
     data = [Dataset(names=[str(k) for k in range(m)], laser=np.asarray(laser, dtype=float),
                     robot=np.asarray(robot, dtype=float), weights=np.asarray(weights, dtype=float))]
     return _round(data, [0], {0: np.ones(m, dtype=bool)})[0][4]
+
+
+def hand_marks(names: Sequence[str], exclude, path: str | None) -> list[str | None]:
+    """Per point, "hand" where ``--exclude`` names it (case-insensitively),
+    else None; a name that is no point is an error listing the points."""
+    marks: list[str | None] = [None] * len(names)
+    by_name = {nm.casefold(): k for k, nm in enumerate(names)}
+    for name in exclude:
+        k = by_name.get(name.strip().casefold())
+        if k is None:
+            raise UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(names)})",
+                             file=path)
+        marks[k] = "hand"
+    return marks
+
+
+def next_exclusion(used: np.ndarray, resid: np.ndarray, loo: np.ndarray, *, first: bool,
+                   threshold: float, no_exclusion: bool, fewest: int) -> int | None:
+    """One step of the exclusion rule (SPEC, method point 6): None when the
+    fit stands, else the point to exclude next, the used one with the
+    largest leave-one-out residual above the threshold. After the first fit
+    it stops once every used residual is within the threshold; it never goes
+    below ``fewest`` points (what the fit itself needs: it runs to its end
+    below --min-points, so a rejected set still lists every point the rule
+    excludes)."""
+    if not first and resid[used].max() <= threshold:
+        return None
+    if no_exclusion or int(used.sum()) - 1 < fewest:
+        return None
+    lu = np.where(used, loo, np.nan)
+    if not np.isfinite(lu).any() or np.nanmax(lu) <= threshold:
+        return None
+    return int(np.nanargmax(lu))
 
 
 def acceptance(n_used: int, max_residual: float, *, threshold: float, min_points: int,
@@ -354,19 +388,10 @@ def _solve_many(data: Sequence[Dataset]) -> list:
     excluded_by: dict[int, list] = {}
     active: list[int] = []
     for i, d in enumerate(data):
-        n = len(d.names)
-        marks: list[str | None] = [None] * n
-        by_name = {nm.casefold(): k for k, nm in enumerate(d.names)}
-        bad = None
-        for name in d.exclude:
-            k = by_name.get(name.strip().casefold())
-            if k is None:
-                bad = UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(d.names)})",
-                                 file=d.path)
-                break
-            marks[k] = "hand"
-        if bad is not None:
-            results[i] = bad
+        try:
+            marks = hand_marks(d.names, d.exclude, d.path)
+        except UcsioError as exc:
+            results[i] = exc
             continue
         bad = _unusable(d)
         if bad is not None:
@@ -390,22 +415,12 @@ def _solve_many(data: Sequence[Dataset]) -> list:
                 results[i] = UcsioError(f"cannot fit a frame{which}: {horn.REASONS[status]}",
                                         file=d.path)
                 continue
-            n_used = int(u.sum())
-            if not first[i]:
-                # Runs to its end even below min_points (SPEC point 6): a
-                # rejected set still lists every point the rule excludes.
-                if resid[u].max() <= d.threshold:
-                    final[i] = fits[i]
-                    continue
+            worst = next_exclusion(u, resid, loo, first=first[i], threshold=d.threshold,
+                                   no_exclusion=d.no_exclusion, fewest=3)
             first[i] = False
-            if d.no_exclusion or n_used - 1 < 3:
+            if worst is None:
                 final[i] = fits[i]
                 continue
-            lu = np.where(u, loo, np.nan)
-            if not np.isfinite(lu).any() or np.nanmax(lu) <= d.threshold:
-                final[i] = fits[i]
-                continue
-            worst = int(np.nanargmax(lu))
             u[worst] = False
             excluded_by[i][worst] = "auto"
             still.append(i)
@@ -539,7 +554,7 @@ def uncertainty(laser, robot_poses, tcp=(0.0, 0.0, 0.0), weights=None, n_samples
     noisy_r = robot + rng.normal(0.0, sigma_robot, size=(n_samples, n, 3))
     fits = horn.horn_batch(noisy_l, noisy_r, np.broadcast_to(w, (n_samples, n)))
     t = fits.t
-    angle = horn.rotation_angle_deg(nominal.R[None], fits.R)
+    angle = rotation_angle_deg(nominal.R[None], fits.R)
 
     std = {axis: float(np.std(t[:, k], ddof=1)) for k, axis in enumerate("xyz")}
     std["angle"] = float(np.sqrt(np.mean(angle ** 2)))

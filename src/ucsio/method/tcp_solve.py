@@ -43,6 +43,7 @@ import numpy as np
 from . import horn
 from .. import defaults
 from ..errors import UcsioError
+from ..geometry.arrays import rotation_angle_deg, rotvecs_to_matrices
 from ..geometry.frames import Pose
 from .precision import residual_sigma, skew
 
@@ -57,16 +58,6 @@ FLAT_RATIO = 0.05
 
 
 # ---------------------------------------------------------------- the fit
-
-def _exp(theta: np.ndarray) -> np.ndarray:
-    """(S, 3) rotation vectors -> (S, 3, 3) matrices, through the unit
-    quaternion (horn.quat_to_matrix: one place for that conversion)."""
-    angle = np.linalg.norm(theta, axis=-1)
-    half = 0.5 * angle
-    scale = np.where(angle > 1e-12, np.sin(half) / np.where(angle > 1e-12, angle, 1.0), 0.5)
-    q = np.concatenate([np.cos(half)[..., None], theta * scale[..., None]], axis=-1)
-    return horn.quat_to_matrix(q)
-
 
 def linear_tcp(laser: np.ndarray, Rf: np.ndarray, tf: np.ndarray, w: np.ndarray) -> np.ndarray:
     """The linear first solution's x (3,) from points with weight w > 0."""
@@ -122,7 +113,7 @@ def gauss_newton(laser, Rf, tf, W, R, t, x):
         H = np.einsum("sn,snki,snkj->sij", W, J, J)
         g = np.einsum("sn,snki,snk->si", W, J, e)
         step = -np.einsum("sij,sj->si", np.linalg.pinv(H, hermitian=True), g)
-        R = _exp(step[:, :3]) @ R
+        R = rotvecs_to_matrices(step[:, :3]) @ R
         t = t + step[:, 3:6]
         x = x + step[:, 6:]
         if np.all(np.abs(step[:, :3]) <= STEP_ROT) and np.all(np.abs(step[:, 3:]) <= STEP_MM):
@@ -167,7 +158,7 @@ def orientation_span(Rf: np.ndarray) -> float:
     if len(Rf) < 2:
         return 0.0
     i, j = np.triu_indices(len(Rf), 1)
-    return float(np.max(horn.rotation_angle_deg(Rf[i], Rf[j])))
+    return float(np.max(rotation_angle_deg(Rf[i], Rf[j])))
 
 
 def tcp_reason(doubt: float, span: float, threshold: float) -> str:
@@ -194,7 +185,8 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
     ``tcp`` is the solved offset and ``tcp_solved`` its JSON (x, y, z,
     solved, std, at_95)."""
     from . import precision as prec
-    from .solve import PointResult, Solution, acceptance, check_sigmas
+    from .solve import (PointResult, Solution, acceptance, check_sigmas, hand_marks,
+                        next_exclusion)
 
     if not threshold > 0:
         raise UcsioError(f"threshold must be positive, got {threshold}")
@@ -208,14 +200,7 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
     tf = np.asarray(measurement.flange, dtype=float)[:, :3, 3]
     weights = np.asarray(measurement.weights, dtype=float)
     n = len(names)
-    marks: list[str | None] = [None] * n
-    by_name = {nm.casefold(): k for k, nm in enumerate(names)}
-    for name in exclude:
-        k = by_name.get(name.strip().casefold())
-        if k is None:
-            raise UcsioError(f"--exclude {name!r}: no such point (points: {', '.join(names)})",
-                             file=path)
-        marks[k] = "hand"
+    marks = hand_marks(names, exclude, path)
     used = np.array([m is None for m in marks])
     if used.sum() < MIN_POINTS_JOINT:
         raise UcsioError(f"the TCP solved with the frame needs at least {MIN_POINTS_JOINT} "
@@ -232,16 +217,11 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
         while True:
             resid = np.linalg.norm(residuals(laser, Rf, tf, R[None], t[None], x[None])[0], axis=1)
             loo = _leave_one_out(laser, Rf, tf, weights, used, R, t, x)
-            n_used = int(used.sum())
-            if not first and resid[used].max() <= threshold:
-                break
+            worst = next_exclusion(used, resid, loo, first=first, threshold=threshold,
+                                   no_exclusion=no_exclusion, fewest=MIN_POINTS_JOINT)
             first = False
-            if no_exclusion or n_used - 1 < MIN_POINTS_JOINT:
+            if worst is None:
                 break
-            lu = np.where(used, loo, np.nan)
-            if not np.isfinite(lu).any() or np.nanmax(lu) <= threshold:
-                break
-            worst = int(np.nanargmax(lu))
             used[worst] = False
             marks[worst] = "auto"
             R, t, x = (a[0] for a in gauss_newton(laser, Rf, tf, (weights * used)[None],
@@ -361,7 +341,7 @@ def uncertainty(measurement, sol, n_samples: int = 10000,
         R, t, x = gauss_newton(noisy_l, Rf, noisy_t, np.broadcast_to(w, (S, n)),
                                np.repeat(R0[None], S, 0), np.repeat(t0[None], S, 0),
                                np.repeat(x0[None], S, 0))
-    angle = horn.rotation_angle_deg(R0[None], R)
+    angle = rotation_angle_deg(R0[None], R)
 
     def stats(v):
         lo, hi = np.percentile(v, [2.5, 97.5], axis=0)

@@ -93,7 +93,7 @@ def kuka_dat(path: str, config: str | None) -> RobotPoses:
     from ..parsing.controller import load
     from ..parsing.document import Document
     from ..parsing.krl import positions
-    from ..method.measurement import flange_matrices
+    from ..geometry.arrays import flange_matrices
 
     doc = Document.read(path)
     cfg = None
@@ -168,7 +168,7 @@ def _names(names: list[str], most: int = 8) -> str:
 def abb_module(path: str, tool: str, wobj: str, config: str | None) -> RobotPoses:
     from ..parsing.controller import parse
     from ..parsing.document import Document
-    from ..method.measurement import flange_matrices
+    from ..geometry.arrays import flange_matrices
     from ..parsing.rapid import robtargets
 
     cf = parse(Document.read(path), full=True)
