@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
 import math
 import re
 import shutil
@@ -93,6 +94,41 @@ def test_kuka_points_in_the_controllers_tree(tmp_path):
     assert "XP5" in err and "IPO_FRAME #TCP" in err
     # a point 2 m out moves far more than the frame's own dt_mean says
     assert pm["max"] > 10 * d["dt_mean"]
+
+
+@pytest.mark.parametrize("layout", ["flat", "krc", "zip"])
+def test_kuka_points_of_another_robot_beside_ours_are_not_counted(tmp_path, layout):
+    """A folder of several robots' backups: the other robot's $config.dat
+    marks its tree, and its points (here: BASE_NO 3 too) stay out."""
+    ours_cfg = KUKA_CONFIG.read_bytes()
+    seam = (TAUGHT / "kuka" / "KRC" / "R1" / "Program" / "Weld" / "seam.dat").read_bytes()
+    if layout == "krc":
+        ours = tmp_path / "cell" / "KRC" / "R1" / "System" / "$config.dat"
+        files = {ours: ours_cfg, tmp_path / "cell" / "KRC" / "R1" / "Program" / "seam.dat": seam,
+                 tmp_path / "cell" / "KRC" / "R2" / "System" / "$config.dat": ours_cfg,
+                 tmp_path / "cell" / "KRC" / "R2" / "Program" / "other.dat": seam}
+    else:
+        ours = tmp_path / "cell" / "$config.dat"
+        files = {ours: ours_cfg, tmp_path / "cell" / "seam.dat": seam,
+                 tmp_path / "cell" / "R02" / "$config.dat": ours_cfg,
+                 tmp_path / "cell" / "R02" / "other.dat": seam}
+    for path, data in files.items():
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+    target = ours
+    if layout == "zip":
+        import zipfile
+
+        archive = tmp_path / "backups.zip"
+        with zipfile.ZipFile(archive, "w") as z:
+            for path, data in files.items():
+                z.writestr(str(path.relative_to(tmp_path)), data)
+        target = f"{archive}!cell/$config.dat"
+    d, err = points_json(target, "--frame", "weld_fixture", "--measured",
+                         solution(tmp_path, **KUKA_MEAS))
+    got = {(p["name"], os.path.basename(p["file"])) for p in d["points"]}
+    assert all(f in ("seam.dat", "$config.dat") for _, f in got), got
+    assert {n for n, _ in got} == set(KUKA_POINTS)
 
 
 def test_kuka_table_shows_worst_ten_and_count(tmp_path):

@@ -57,7 +57,11 @@ def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
     or, for ``ARCHIVE.zip!member``, in the same archive (read in place).
     ``root_of`` maps the file's folder, as a list of path parts, to how many
     of them make the searched root. Shown paths stay as the user gave them
-    (relative to the current folder where below it)."""
+    (relative to the current folder where below it).
+
+    Another file named like ``file`` below that root (a second robot's
+    $config.dat in a folder of several backups) owns its own tree, found by
+    the same ``root_of``: its files are another controller's, left out."""
     from ..parsing.backup import Source, archive_sources, split_member
 
     member = split_member(file)
@@ -65,9 +69,10 @@ def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
         archive, inner = member
         parts = inner.replace("\\", "/").split("/")[:-1]
         prefix = "/".join(parts[:root_of(parts)])
-        return [src for src in archive_sources(archive)
-                if src.rel.lower().endswith(suffixes)
-                and (not prefix or src.rel.casefold().startswith(prefix.casefold() + "/"))]
+        found = [src for src in archive_sources(archive)
+                 if src.rel.lower().endswith(suffixes)
+                 and (not prefix or src.rel.casefold().startswith(prefix.casefold() + "/"))]
+        return _own_tree(found, inner.replace("\\", "/"), root_of, lambda src: src.rel)
     folder = os.path.dirname(os.path.abspath(file))
     parts = folder.split(os.sep)
     root = os.sep.join(parts[:root_of(parts)]) or os.sep
@@ -80,7 +85,33 @@ def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
                 rel = os.path.relpath(full)
                 shown = rel if not rel.startswith("..") else full
                 out.append(Source(shown, os.path.relpath(full, root), path=full))
-    return out
+    return _own_tree(out, os.path.relpath(os.path.abspath(file), root).replace(os.sep, "/"),
+                     root_of, lambda src: src.rel.replace(os.sep, "/"))
+
+
+def _own_tree(sources: list, mine: str, root_of, rel) -> list:
+    """``sources`` less those in the tree of another file named as ``mine``
+    (paths relative to the searched root, "/"-separated): that tree is
+    another controller's. A tree that holds ``mine`` is not left out."""
+    name = mine.rsplit("/", 1)[-1].casefold()
+    me = tuple(p.casefold() for p in mine.split("/"))
+    others = []
+    for src in sources:
+        parts = tuple(p.casefold() for p in rel(src).split("/"))
+        if parts[-1] != name or parts == me:
+            continue
+        folder = list(parts[:-1])
+        tree = tuple(folder[:root_of(folder)])
+        if me[:len(tree)] != tree:        # not an ancestor of ours: a tree of its own
+            others.append(tree)
+    if not others:
+        return sources
+    keep = []
+    for src in sources:
+        parts = tuple(p.casefold() for p in rel(src).split("/"))
+        if not any(parts[:len(t)] == t for t in others):
+            keep.append(src)
+    return keep
 
 
 def same_folder(parts: list[str]) -> int:

@@ -7,7 +7,9 @@ BASE_NO n (and IPO_FRAME #BASE: with #TCP the base is an external TCP and
 the point is a robot-held workpiece's, which the base's change moves
 differently). Points are searched in every .dat file of the controller's
 tree: the KRC folder around $config.dat (KRC/R1/System/$config.dat ->
-KRC/), else R1/ for R1/System/$config.dat, else the file's own folder.
+KRC/), else R1/ for R1/System/$config.dat, else the file's own folder. A
+second $config.dat below that folder (a folder of several robots' backups)
+marks another robot's tree, found the same way, and its files are left out.
 
 Each .dat is read by ``krl.positions`` (the reader ``solve --robot`` uses) on
 the fast path: the position and FDAT declaration lines and the layout lines
