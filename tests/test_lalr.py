@@ -263,3 +263,15 @@ def test_reading_a_file_does_not_import_lark(tmp_path):
         seen.append(out.stdout.strip().splitlines()[-1] if out.stdout.strip() else out.stderr)
     assert seen[0] == "True"            # cold cache: Lark builds the RAPID tables
     assert seen[1:] == ["False", "True", "False", "False", "False"], seen  # KRL's, once
+
+
+def test_cache_dir_is_never_a_tilde_folder_in_the_current_folder(monkeypatch, tmp_path):
+    import tempfile
+
+    monkeypatch.delenv("UCSIO_CACHE_DIR", raising=False)
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    monkeypatch.setattr(os.path, "expanduser", lambda p: p)      # no home at all
+    where = grammar.cache_dir()
+    assert where.is_absolute() and str(where).startswith(tempfile.gettempdir())
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    assert grammar.cache_dir() == tmp_path / "ucsio"

@@ -82,7 +82,13 @@ def cache_dir() -> Path:
     where = os.environ.get("UCSIO_CACHE_DIR")
     if where:
         return Path(where)
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    base = os.environ.get("XDG_CACHE_HOME")
+    if not base:
+        home = os.path.expanduser("~")
+        if home.startswith("~"):        # no home to expand: never a "~" folder in the cwd
+            import tempfile
+            return Path(tempfile.gettempdir()) / f"ucsio-cache-{os.getuid() if hasattr(os, 'getuid') else 'user'}"
+        base = os.path.join(home, ".cache")
     return Path(base) / "ucsio"
 
 
