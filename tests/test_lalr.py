@@ -223,6 +223,13 @@ def test_a_rejected_text_gets_lark_s_exception():
 
 
 def test_tables_cached_on_disk_rebuilt_when_damaged_and_optional(tmp_path, monkeypatch):
+    import shutil
+
+    bare = tmp_path / "grammars"            # the grammars without shipped tables
+    bare.mkdir()
+    for g in grammar.grammar_dir().glob("*.lark"):
+        shutil.copy(g, bare / g.name)
+    monkeypatch.setattr(grammar, "grammar_dir", lambda: bare)
     monkeypatch.setenv("UCSIO_CACHE_DIR", str(tmp_path / "cache"))
     first = grammar.tables("krl", krl.START)
     (path,) = (tmp_path / "cache").iterdir()
@@ -261,8 +268,34 @@ def test_reading_a_file_does_not_import_lark(tmp_path):
         out = subprocess.run([sys.executable, "-c", PROBE, *map(str, args)], env=env,
                              capture_output=True, text=True)
         seen.append(out.stdout.strip().splitlines()[-1] if out.stdout.strip() else out.stderr)
-    assert seen[0] == "True"            # cold cache: Lark builds the RAPID tables
-    assert seen[1:] == ["False", "True", "False", "False", "False"], seen  # KRL's, once
+    if any(grammar.grammar_dir().glob("*.tables.json")):     # an installed wheel ships them
+        assert seen == ["False"] * 6, seen
+    else:       # a source checkout: Lark builds each grammar's tables once, then the cache
+        assert seen == ["True", "False", "True", "False", "False", "False"], seen
+
+
+def test_the_wheel_s_tables_are_found_beside_the_grammars(tmp_path, monkeypatch):
+    """hatch_build.py ships write_tables' files beside the grammars; tables()
+    reads them there, builds nothing and writes no cache."""
+    import shutil
+
+    from ucsio.taught import abb
+
+    assert {(rapid.__name__.rsplit(".")[-1], rapid.START), ("krl", krl.START)} <= set(grammar.BUILT)
+    assert ("rapid", ("statements",)) in grammar.BUILT      # diff --points (taught.abb)
+    assert abb._statement_parser() is grammar.parser("rapid", ("statements",))
+    shipped = tmp_path / "grammars"
+    shipped.mkdir()
+    for g in grammar.grammar_dir().glob("*.lark"):
+        shutil.copy(g, shipped / g.name)
+    written = grammar.write_tables(shipped)
+    assert len(written) == len(grammar.BUILT)
+    monkeypatch.setattr(grammar, "grammar_dir", lambda: shipped)
+    monkeypatch.setattr(grammar, "lark_parser", None)          # building would fail
+    monkeypatch.setenv("UCSIO_CACHE_DIR", str(tmp_path / "cache"))
+    for name, start in grammar.BUILT:
+        assert grammar.tables(name, start)["format"] == lalr.FORMAT
+    assert not (tmp_path / "cache").exists()
 
 
 def test_cache_dir_is_never_a_tilde_folder_in_the_current_folder(monkeypatch, tmp_path):

@@ -1,9 +1,11 @@
 """The grammars that ship with ucsio, compiled by Lark, run by ucsio.parsing.lalr.
 
 The grammars are data (grammars/*.lark at the top of the repository, copied
-into the wheel as ucsio/grammars). Lark compiles each into LALR tables once
-per machine; ``tables`` keeps them on disk (JSON, keyed by the grammar's
-text), so a command that reads a file never imports Lark. Only a syntax
+into the wheel as ucsio/grammars). Lark compiles each into LALR tables: when
+the wheel is built (hatch_build.py ships them beside the grammars), or in a
+source checkout once per machine (``tables`` keeps them in a disk cache);
+JSON keyed by the grammar's text. So a command that reads a file never
+imports Lark. Only a syntax
 error does: ``parse`` asks Lark itself for the positioned message, so what
 the user reads is Lark's diagnosis of exactly the text we rejected.
 """
@@ -57,25 +59,48 @@ def parse(name: str, start: tuple[str, ...], text: str, symbol: str) -> lalr.Tre
     return from_lark(tree)      # not reached while the two agree (tests/test_lalr.py)
 
 
+# The parsers ucsio runs: (grammar, start symbols). A wheel ships their
+# tables beside the grammars (hatch_build.py calls write_tables).
+BUILT = (("rapid", ("file", "data_decl")), ("rapid", ("statements",)), ("krl", ("file",)))
+
+
 def tables(name: str, start: tuple[str, ...]) -> dict:
-    """The LALR tables, from the disk cache or (first run, changed grammar)
-    from Lark; the cache is written atomically, and where it cannot be
+    """The LALR tables: shipped beside the grammars (an installed wheel), or
+    from the disk cache, or (a source checkout's first run, a changed
+    grammar) from Lark. The cache is written atomically; where it cannot be
     written the tables are simply rebuilt next time."""
-    text = (grammar_dir() / f"{name}.lark").read_text(encoding="utf-8")
-    # hashlib would cost a cold start 6 ms (it loads OpenSSL); a CRC and
-    # the length tell an edited grammar from the cached one
-    data = f"{lalr.FORMAT}\0{','.join(start)}\0{text}".encode()
-    key = f"{zlib.crc32(data):08x}{len(data):x}"
-    path = cache_dir() / f"{name}-{key}.json"
-    try:
-        got = json.loads(path.read_bytes())
-        if got.get("format") == lalr.FORMAT:
-            return got
-    except (OSError, ValueError, AttributeError):
-        pass
+    key = _key(name, start)
+    for path in (grammar_dir() / f"{name}-{key}.tables.json", cache_dir() / f"{name}-{key}.json"):
+        try:
+            got = json.loads(path.read_bytes())
+            if got.get("format") == lalr.FORMAT:
+                return got
+        except (OSError, ValueError, AttributeError):
+            pass
     got = lalr.tables_from_lark(lark_parser(name, start))
     _write_cache(path, json.dumps(got, separators=(",", ":")).encode())
     return json.loads(json.dumps(got))      # as read back from disk: tuples become lists
+
+
+def _key(name: str, start: tuple[str, ...]) -> str:
+    """What the tables depend on: their format, the start symbols and the
+    grammar's text. (hashlib would cost a cold start 6 ms, it loads OpenSSL;
+    a CRC and the length tell an edited grammar from the one tabled.)"""
+    text = (grammar_dir() / f"{name}.lark").read_text(encoding="utf-8")
+    data = f"{lalr.FORMAT}\0{','.join(start)}\0{text}".encode()
+    return f"{zlib.crc32(data):08x}{len(data):x}"
+
+
+def write_tables(folder: Path) -> list[Path]:
+    """Every parser's tables, built with Lark, written into ``folder`` under
+    the names ``tables`` looks for beside the grammars."""
+    written = []
+    for name, start in BUILT:
+        path = Path(folder) / f"{name}-{_key(name, start)}.tables.json"
+        got = lalr.tables_from_lark(lark_parser(name, start))
+        path.write_text(json.dumps(got, separators=(",", ":")), encoding="utf-8")
+        written.append(path)
+    return written
 
 
 def cache_dir() -> Path:
