@@ -308,3 +308,15 @@ def test_cache_dir_is_never_a_tilde_folder_in_the_current_folder(monkeypatch, tm
     assert where.is_absolute() and str(where).startswith(tempfile.gettempdir())
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     assert grammar.cache_dir() == tmp_path / "ucsio"
+
+
+def test_a_lark_tree_converts_to_ours_node_for_node():
+    """grammar.from_lark: what parse returns were Lark to accept a text the
+    tables reject (never seen; the trees must still be the same kind)."""
+    text = "MODULE m\n  PERS wobjdata w := [FALSE, TRUE, \"\", [[1, -2, 3], [1, 0, 0, 0]], " \
+           "[[0, 0, 0], [1, 0, 0, 0]]];\n  PROC p()\n  ENDPROC\nENDMODULE\n"
+    theirs = lark_tree(rapid, text)
+    converted = grammar.from_lark(theirs)
+    assert isinstance(converted, lalr.Tree)
+    assert same_tree(converted, theirs)
+    assert same_tree(ours(rapid, text), theirs)
