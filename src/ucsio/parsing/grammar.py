@@ -43,17 +43,22 @@ def parser(name: str, start: tuple[str, ...]) -> lalr.Parser:
     return lalr.Parser(tables(name, start))
 
 
-def parse(name: str, start: tuple[str, ...], text: str, symbol: str) -> lalr.Tree:
+def parse(name: str, start: tuple[str, ...], text: str, symbol: str,
+          lark_first: bool = False) -> lalr.Tree:
     """The tree of ``text`` from start symbol ``symbol``; SyntaxFailure,
-    with Lark's positioned exception, where the grammar rejects it."""
-    try:
-        return parser(name, start).parse(text, symbol)
-    except lalr.Rejected:
-        pass
+    with Lark's positioned exception, where the grammar rejects it.
+    ``lark_first``: the text is known to be rejected (the recogniser said
+    so): go straight to Lark for the message."""
+    if not lark_first:
+        try:
+            return parser(name, start).parse(text, symbol)
+        except lalr.Rejected:
+            pass
     from lark.exceptions import LarkError
 
     try:
-        tree = lark_parser(name, start).parse(text, start=symbol)
+        with lalr.paused_gc():
+            tree = lark_parser(name, start).parse(text, start=symbol)
     except LarkError as exc:
         raise SyntaxFailure(exc) from None
     return from_lark(tree)      # not reached while the two agree (tests/test_lalr.py)

@@ -398,11 +398,11 @@ def _bad_number(text: str, pos: int):
     return s, e
 
 
-def _parse(doc: Document, text: str, start: str):
+def _parse(doc: Document, text: str, start: str, lark_first: bool = False):
     from .grammar import SyntaxFailure, parse
 
     try:
-        return parse("krl", START, text, start)
+        return parse("krl", START, text, start, lark_first)
     except SyntaxFailure as failure:
         if start == "file":
             m = _DEFDAT.search(text)
@@ -563,7 +563,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         try:
             _recognise(text)
         except Rejected:
-            return parse_whole(doc)     # the positioned error (or, were the two to differ, the tree)
+            return parse_whole(doc, rejected=True)  # the positioned error (or, were the two to differ, the tree)
     # the frame lines and the layout lines (outline), the rest blanked out
     spans = outline(text)
     got = _shared_parse(doc, text, spans)
@@ -599,12 +599,13 @@ def _interpret(doc: Document, stmts, tree) -> ControllerFile:
     return cf
 
 
-def parse_whole(doc: Document) -> ControllerFile:
+def parse_whole(doc: Document, rejected: bool = False) -> ControllerFile:
     """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
-    against, and the way to the exact message when it rejects a file."""
+    against, and the way to the exact message when it rejects a file
+    (``rejected``: the recogniser did, so Lark reads it first)."""
     text = _lines(doc)
-    tree = _parse(doc, text, "file")
+    tree = _parse(doc, text, "file", lark_first=rejected)
     return _interpret(doc, _statements(tree, doc), tree)
 
 

@@ -283,11 +283,11 @@ def _parser():
     return grammar.parser("rapid", START)
 
 
-def parse_tree(doc: Document, source: str, locate=lambda pos: pos):
+def parse_tree(doc: Document, source: str, locate=lambda pos: pos, lark_first: bool = False):
     from .grammar import SyntaxFailure, parse
 
     try:
-        return parse("rapid", START, source, "file")
+        return parse("rapid", START, source, "file", lark_first)
     except SyntaxFailure as failure:
         exc = failure.error
     from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
@@ -749,7 +749,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         try:
             _recognise(doc.text)
         except Rejected:
-            return parse_whole(doc)      # the positioned error (or, were the two to differ, the tree)
+            return parse_whole(doc, rejected=True)  # the positioned error (or, were the two to differ, the tree)
     frame_regions = [r for r in regions if r.kind not in ("decls", "routine")]
     compact = Compact(doc, frame_regions)
     try:
@@ -764,13 +764,14 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     return _interpret(doc, decls)
 
 
-def parse_whole(doc: Document) -> ControllerFile:
+def parse_whole(doc: Document, rejected: bool = False) -> ControllerFile:
     """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
-    against, and the way to the exact message when it rejects a file."""
+    against, and the way to the exact message when it rejects a file
+    (``rejected``: the recogniser did, so Lark reads it first)."""
     outline(doc)
     _check_numbers(doc)
-    return _interpret(doc, declarations(doc, parse_tree(doc, doc.text)))
+    return _interpret(doc, declarations(doc, parse_tree(doc, doc.text, lark_first=rejected)))
 
 
 def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
