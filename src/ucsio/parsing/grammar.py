@@ -117,7 +117,8 @@ def cache_dir() -> Path:
         home = os.path.expanduser("~")
         if home.startswith("~"):        # no home to expand: never a "~" folder in the cwd
             import tempfile
-            return Path(tempfile.gettempdir()) / f"ucsio-cache-{os.getuid() if hasattr(os, 'getuid') else 'user'}"
+            user = os.getuid() if hasattr(os, "getuid") else "user"
+            return Path(tempfile.gettempdir()) / f"ucsio-cache-{user}"
         base = os.path.join(home, ".cache")
     return Path(base) / "ucsio"
 

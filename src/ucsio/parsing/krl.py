@@ -563,7 +563,8 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         try:
             _recognise(text)
         except Rejected:
-            return parse_whole(doc, rejected=True)  # the positioned error (or, were the two to differ, the tree)
+            # Lark's positioned message (or, were the two to differ, the tree)
+            return parse_whole(doc, rejected=True)
     # the frame lines and the layout lines (outline), the rest blanked out
     spans = outline(text)
     got = _shared_parse(doc, text, spans)

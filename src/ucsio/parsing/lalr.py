@@ -142,7 +142,8 @@ class Parser:
             raise ValueError("tables of another format")
         self.actions: list[dict[str, int]] = tables["states"]
         self.rules = [(size, origin) for size, origin, *_ in tables["rules"]]
-        self.builders = [_builder(name, expand1, keep) for _, _, name, expand1, keep in tables["rules"]]
+        self.builders = [_builder(name, expand1, keep)
+                         for _, _, name, expand1, keep in tables["rules"]]
         self._lexer_specs = tables["lexers"]
         self._lexer_of = tables["lexer_of"]
         self._compiled: list = [None] * len(self._lexer_specs)

@@ -31,7 +31,7 @@ from ..values import Value
 from .controller import ControllerFile
 from .document import Document, Span
 from .grammar import grammar_dir
-from .lalr import Token, Tree
+from .lalr import Rejected, Token, Tree
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
@@ -745,11 +745,11 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     regions = outline(doc, routines=full)  # structure errors read best from the outline
     if full:
         _check_numbers(doc)
-        from .lalr import Rejected
         try:
             _recognise(doc.text)
         except Rejected:
-            return parse_whole(doc, rejected=True)  # the positioned error (or, were the two to differ, the tree)
+            # Lark's positioned message (or, were the two to differ, the tree)
+            return parse_whole(doc, rejected=True)
     frame_regions = [r for r in regions if r.kind not in ("decls", "routine")]
     compact = Compact(doc, frame_regions)
     try:
@@ -783,7 +783,8 @@ def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
 
 # -- check: the recogniser and the declarations the fast path leaves out -----------
 def _recognise(text: str) -> None:
-    """Every byte through the grammar (ucsio.parsing.lalr.Parser.recognise); Rejected if not RAPID."""
+    """Every byte through the grammar (ucsio.parsing.lalr.Parser.recognise);
+    Rejected if not RAPID."""
     global _SHORTCUTS
     parser = _parser()
     if _SHORTCUTS is None:
