@@ -75,7 +75,9 @@ def tables(name: str, start: tuple[str, ...]) -> dict:
     grammar) from Lark. The cache is written atomically; where it cannot be
     written the tables are simply rebuilt next time."""
     key = _key(name, start)
-    for path in (grammar_dir() / f"{name}-{key}.tables.json", cache_dir() / f"{name}-{key}.json"):
+    shipped = grammar_dir() / f"{name}-{key}.tables.json"
+    cached = cache_dir() / f"{name}-{key}.json"
+    for path in (shipped, cached):
         try:
             got = json.loads(path.read_bytes())
             if got.get("format") == lalr.FORMAT:
@@ -83,7 +85,7 @@ def tables(name: str, start: tuple[str, ...]) -> dict:
         except (OSError, ValueError, AttributeError):
             pass
     got = lalr.tables_from_lark(lark_parser(name, start))
-    _write_cache(path, json.dumps(got, separators=(",", ":")).encode())
+    _write_cache(cached, json.dumps(got, separators=(",", ":")).encode())
     return json.loads(json.dumps(got))      # as read back from disk: tuples become lists
 
 
