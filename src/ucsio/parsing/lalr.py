@@ -5,8 +5,9 @@ contextual lexer a regular expression per parser state, and its tree
 builder the shape of each rule's node (which tokens are kept, which
 ``_rule`` children are spliced in, which ``?rule`` nodes stand for their
 only child). ``tables_from_lark`` copies exactly that into plain data, which
-ucsio.parsing.grammar caches on disk; this module reads it without importing Lark
-(a command that reads one file starts in a blink), and drives it two ways:
+the wheel ships (ucsio.parsing.grammar builds and caches it in a source
+checkout); this module runs it without importing Lark (a command that reads
+one file starts in a blink), two ways:
 
 - ``parse``: tokens and a tree shaped as Lark shapes it (Tree.data,
   .children; Token, a str with .type, .value, .start_pos, .end_pos);
