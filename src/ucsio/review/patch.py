@@ -507,8 +507,9 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     # into lines and given to difflib (splitting and matching a 2.6 MB module
     # was a third of a patch); hunk headers are moved back to the file's lines
     starts = doc.line_starts
-    first = _common_prefix(old_text, new_text)
-    tail = _common_suffix(old_text, new_text, min(len(old_text), len(new_text)) - first)
+    first = _common_run(old_text, new_text, min(len(old_text), len(new_text)))
+    tail = _common_run(old_text, new_text, min(len(old_text), len(new_text)) - first,
+                       from_end=True)
     top = max(0, bisect.bisect_right(starts, first) - 1 - n - 1)
     bottom = bisect.bisect_right(starts, len(old_text) - tail) + n + 1
     begin = starts[top]
@@ -536,35 +537,24 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     return "\n".join(out) + ("\n" if new_text != old_text else "")
 
 
-def _common_prefix(a: str, b: str) -> int:
-    """Length of the longest common prefix of a and b: slices compared in C,
-    doubling, then halving."""
-    limit = min(len(a), len(b))
-    lo, step = 0, 4096
-    while lo < limit:
-        hi = min(limit, lo + step)
-        if a[lo:hi] != b[lo:hi]:
-            while hi - lo > 1:          # a[:lo] == b[:lo] and a[lo:hi] != b[lo:hi]
-                mid = (lo + hi) // 2
-                if a[lo:mid] == b[lo:mid]:
-                    lo = mid
-                else:
-                    hi = mid
-            return lo
-        lo, step = hi, step * 2
-    return limit
-
-
-def _common_suffix(a: str, b: str, limit: int) -> int:
-    """Length of the longest common suffix of a and b, at most ``limit``."""
+def _common_run(a: str, b: str, limit: int, from_end: bool = False) -> int:
+    """Length (at most ``limit``) of the longest common prefix of a and b,
+    or with ``from_end`` of their longest common suffix: slices compared in
+    C, doubling, then halving."""
     na, nb = len(a), len(b)
+
+    def same(lo: int, hi: int) -> bool:      # the run from lo to hi chars in
+        if from_end:
+            return a[na - hi:na - lo] == b[nb - hi:nb - lo]
+        return a[lo:hi] == b[lo:hi]
+
     lo, step = 0, 4096
     while lo < limit:
         hi = min(limit, lo + step)
-        if a[na - hi:na - lo] != b[nb - hi:nb - lo]:
-            while hi - lo > 1:          # equal over the last lo, not the last hi
+        if not same(lo, hi):
+            while hi - lo > 1:          # the first lo agree, the first hi do not
                 mid = (lo + hi) // 2
-                if a[na - mid:na - lo] == b[nb - mid:nb - lo]:
+                if same(lo, mid):
                     lo = mid
                 else:
                     hi = mid
