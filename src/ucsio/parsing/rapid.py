@@ -366,25 +366,17 @@ class _LazyDecl(Decl):
 
     def _convert(self) -> tuple:
         if self._converted is None:
-            doc = self._doc
-            text = doc.text[self.start:self.end]
             from .grammar import SyntaxFailure, parse
 
+            doc = self._doc
+            own = Compact(doc, [Region("decl", Span(self.start, self.end))])
             try:
-                tree = parse("rapid", START, text, "data_decl")
+                tree = parse("rapid", START, own.text, "data_decl")
             except SyntaxFailure:   # pragma: no cover - the recogniser accepted the file
                 raise doc.error(f"{self.name}: declaration not understood", self.start) from None
-            _shift_tokens(tree, self.start)
+            own.remap(tree)
             self._nodes = _decl_parts(tree)[4:]
         return Decl._convert(self)
-
-
-def _shift_tokens(tree, delta: int) -> None:
-    for sub in tree.iter_subtrees():
-        for tok in sub.children:
-            if isinstance(tok, Token) and tok.start_pos is not None:
-                tok.start_pos += delta
-                tok.end_pos += delta
 
 
 class _Expr:
