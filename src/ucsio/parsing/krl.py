@@ -563,8 +563,8 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         try:
             _recognise(text)
         except Rejected:
-            # Lark's positioned message (or, were the two to differ, the tree)
-            return parse_whole(doc, rejected=True)
+            # Lark first: its positioned message (or, were the two to differ, the tree)
+            return _whole(doc, text, lark_first=True)
     # the frame lines and the layout lines (outline), the rest blanked out
     spans = outline(text)
     got = _shared_parse(doc, text, spans)
@@ -600,13 +600,17 @@ def _interpret(doc: Document, stmts, tree) -> ControllerFile:
     return cf
 
 
-def parse_whole(doc: Document, rejected: bool = False) -> ControllerFile:
+def parse_whole(doc: Document) -> ControllerFile:
     """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
-    against, and the way to the exact message when it rejects a file
-    (``rejected``: the recogniser did, so Lark reads it first)."""
-    text = _lines(doc)
-    tree = _parse(doc, text, "file", lark_first=rejected)
+    against."""
+    return _whole(doc, _lines(doc))
+
+
+def _whole(doc: Document, text: str, lark_first: bool = False) -> ControllerFile:
+    """The tree of every byte of ``text`` (the grammar's copy of the file),
+    interpreted; ``lark_first`` where the recogniser has rejected it."""
+    tree = _parse(doc, text, "file", lark_first=lark_first)
     return _interpret(doc, _statements(tree, doc), tree)
 
 

@@ -740,8 +740,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         try:
             _recognise(doc.text)
         except Rejected:
-            # Lark's positioned message (or, were the two to differ, the tree)
-            return parse_whole(doc, rejected=True)
+            # Lark first: its positioned message (or, were the two to differ,
+            # the tree); the outline and the number scan above have run
+            tree = parse_tree(doc, doc.text, lark_first=True)
+            return _interpret(doc, declarations(doc, tree))
     frame_regions = [r for r in regions if r.kind not in ("decls", "routine")]
     compact = Compact(doc, frame_regions)
     try:
@@ -756,14 +758,13 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     return _interpret(doc, decls)
 
 
-def parse_whole(doc: Document, rejected: bool = False) -> ControllerFile:
+def parse_whole(doc: Document) -> ControllerFile:
     """``parse(doc, full=True)`` from the tree of every byte (ucsio.parsing.lalr
     shaped as Lark shapes it): the reference the recogniser is tested
-    against, and the way to the exact message when it rejects a file
-    (``rejected``: the recogniser did, so Lark reads it first)."""
+    against."""
     outline(doc)
     _check_numbers(doc)
-    return _interpret(doc, declarations(doc, parse_tree(doc, doc.text, lark_first=rejected)))
+    return _interpret(doc, declarations(doc, parse_tree(doc, doc.text)))
 
 
 def _interpret(doc: Document, decls: list["Decl"]) -> ControllerFile:
