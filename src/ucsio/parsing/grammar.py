@@ -84,9 +84,9 @@ def tables(name: str, start: tuple[str, ...]) -> dict:
                 return got
         except (OSError, ValueError, AttributeError):
             pass
-    got = lalr.tables_from_lark(lark_parser(name, start))
-    _write_cache(cached, json.dumps(got, separators=(",", ":")).encode())
-    return json.loads(json.dumps(got))      # as read back from disk: tuples become lists
+    data = _from_lark(name, start)
+    _write_cache(cached, data.encode())
+    return json.loads(data)         # as read back from disk: tuples are lists
 
 
 def _key(name: str, start: tuple[str, ...]) -> str:
@@ -104,10 +104,14 @@ def write_tables(folder: Path) -> list[Path]:
     written = []
     for name, start in BUILT:
         path = Path(folder) / f"{name}-{_key(name, start)}.tables.json"
-        got = lalr.tables_from_lark(lark_parser(name, start))
-        path.write_text(json.dumps(got, separators=(",", ":")), encoding="utf-8")
+        path.write_text(_from_lark(name, start), encoding="utf-8")
         written.append(path)
     return written
+
+
+def _from_lark(name: str, start: tuple[str, ...]) -> str:
+    """The tables as Lark builds them, as the JSON text stored on disk."""
+    return json.dumps(lalr.tables_from_lark(lark_parser(name, start)), separators=(",", ":"))
 
 
 def cache_dir() -> Path:
