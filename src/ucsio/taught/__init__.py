@@ -93,12 +93,11 @@ def _own_tree(sources: list, mine: str, root_of, rel) -> list:
     """``sources`` less those in the tree of another file named as ``mine``
     (paths relative to the searched root, "/"-separated): that tree is
     another controller's. A tree that holds ``mine`` is not left out."""
-    name = mine.rsplit("/", 1)[-1].casefold()
     me = tuple(p.casefold() for p in mine.split("/"))
+    paths = [tuple(p.casefold() for p in rel(src).split("/")) for src in sources]
     others = []
-    for src in sources:
-        parts = tuple(p.casefold() for p in rel(src).split("/"))
-        if parts[-1] != name or parts == me:
+    for parts in paths:
+        if parts[-1] != me[-1] or parts == me:
             continue
         folder = list(parts[:-1])
         tree = tuple(folder[:root_of(folder)])
@@ -106,12 +105,8 @@ def _own_tree(sources: list, mine: str, root_of, rel) -> list:
             others.append(tree)
     if not others:
         return sources
-    keep = []
-    for src in sources:
-        parts = tuple(p.casefold() for p in rel(src).split("/"))
-        if not any(parts[:len(t)] == t for t in others):
-            keep.append(src)
-    return keep
+    return [src for src, parts in zip(sources, paths)
+            if not any(parts[:len(t)] == t for t in others)]
 
 
 def same_folder(parts: list[str]) -> int:
