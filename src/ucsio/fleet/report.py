@@ -237,14 +237,19 @@ def histogram_svg(dts: Sequence[tuple[float, int]], bins_per_group: int = 5,
     for k, mm in enumerate((0.0, *GROUP_BOUNDS, top)):
         out.append(f'<text x="{X(k):.1f}" y="{Y(0) + 17:.1f}" text-anchor="middle" font-size="13" '
                    f'fill="#1d2329">{mm:g}</text>')
-    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 8}" text-anchor="middle" font-size="13" '
-               f'fill="#1d2329">dt_mean, mm ({DT_WORDS}); each group one fifth of the axis'
-               f'</text>')
-    out.append(f'<text x="16" y="{top_pad + ph / 2:.1f}" font-size="13" fill="#1d2329" '
-               f'transform="rotate(-90 16 {top_pad + ph / 2:.1f})" text-anchor="middle">'
-               f'number of entries</text>')
-    out.append("</svg>")
+    out.append(_axis_titles(left + pw / 2, H - 8,
+                            f"dt_mean, mm ({DT_WORDS}); each group one fifth of the axis",
+                            top_pad + ph / 2, "number of entries"))
     return "".join(out)
+
+
+def _axis_titles(x_mid: float, x_base: float, x_title: str, y_mid: float, y_title: str) -> str:
+    """A chart's axis titles, the y one turned upright, and the end of its svg."""
+    return (f'<text x="{x_mid:.1f}" y="{x_base}" text-anchor="middle" font-size="13" '
+            f'fill="#1d2329">{x_title}</text>'
+            f'<text x="16" y="{y_mid:.1f}" font-size="13" fill="#1d2329" '
+            f'transform="rotate(-90 16 {y_mid:.1f})" text-anchor="middle">{y_title}</text>'
+            "</svg>")
 
 
 def histogram_legend(tolerance: float | None) -> str:
@@ -330,12 +335,8 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
                    f'<text x="{W - right + 6}" y="{y + 4:.1f}" font-size="13" fill="{BAD}">'
                    f'threshold {threshold:g} mm</text>')
     out.append(f'<line x1="{left}" x2="{W - right}" y1="{base:.1f}" y2="{base:.1f}" stroke="#1d2329"/>')
-    out.append(f'<text x="{left + pw / 2:.1f}" y="{H - 14}" text-anchor="middle" font-size="13" '
-               f'fill="#1d2329">entries in manifest order ({len(rows)} solved)</text>')
-    out.append(f'<text x="16" y="{top_pad + ph / 2:.1f}" font-size="13" fill="#1d2329" '
-               f'transform="rotate(-90 16 {top_pad + ph / 2:.1f})" text-anchor="middle">'
-               f'mm (log scale)</text>')
-    out.append("</svg>")
+    out.append(_axis_titles(left + pw / 2, H - 14, f"entries in manifest order ({len(rows)} solved)",
+                            top_pad + ph / 2, "mm (log scale)"))
     return "".join(out)
 
 
