@@ -51,6 +51,7 @@ from typing import Any
 from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
+from . import regex
 from .controller import ControllerFile
 from .document import Document, Span
 from .lalr import Rejected, Token, Tree
@@ -634,7 +635,7 @@ def _recognise(text: str) -> None:
             field = f"(?:{name}{gap}:{gap})?+{name}{gap}(?:\\[{gap}\\]{gap})?+(?:{item})"
             struct = bracketed(r"\{", r"\}", field, gap)
         # value: NUMBER | struct: the parser moves on alike after either
-        _SHORTCUTS = {"LBRACE": (re.compile(struct), "NUMBER")}
+        _SHORTCUTS = {"LBRACE": (regex.compile(struct), "NUMBER")}
     parser.recognise(text, "file", _SHORTCUTS, _SUSPECTS)
 
 

@@ -23,7 +23,8 @@ rejection are Lark's, on the corpus and on generated and mutated files.
 from __future__ import annotations
 
 import gc
-import re
+
+from . import regex
 
 FORMAT = 1          # bump when the shape of the tables changes (the disk cache keys on it)
 
@@ -161,7 +162,7 @@ class Parser:
         if got is None:
             pattern, flags, ignore, keywords = self._lexer_specs[i]
             kw = {t: _fullmatcher(specs) for t, specs in keywords.items()}
-            got = self._compiled[i] = (re.compile(pattern, flags).match, frozenset(ignore), kw)
+            got = self._compiled[i] = (regex.compile(pattern, flags).match, frozenset(ignore), kw)
         self.lexers[state] = got
         return got
 
@@ -307,7 +308,7 @@ class paused_gc:
 
 def _fullmatcher(specs):
     """Lark's keyword callback: a NAME spelt as a keyword becomes it."""
-    compiled = [re.compile(p, f) for p, f in specs]
+    compiled = [regex.compile(p, f) for p, f in specs]
 
     def retype(value: str):
         for c in compiled:
@@ -345,9 +346,10 @@ def _builder(name: str, expand1: bool, keep):
 def atomic(pattern: str) -> str:
     """A token's pattern as an atomic group: matched as the lexer matches it,
     never given back to let a longer pattern around it succeed. Its groups
-    are made non-capturing: nothing reads them, and CPython 3.11's re
+    are made non-capturing: nothing reads them, CPython 3.11's re
     reports "The span of capturing group is wrong" for capturing groups
-    inside possessive repeats."""
+    inside possessive repeats, and ucsio.parsing.regex rewrites only
+    patterns whose groups are named."""
     return f"(?>{noncapturing(pattern)})"
 
 

@@ -30,6 +30,7 @@ from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
 from .controller import ControllerFile
 from .document import Document, Span
+from . import regex
 from .grammar import grammar_dir
 from .lalr import Rejected, Token, Tree
 
@@ -62,7 +63,7 @@ _PLACEHOLDER = r"<(?:TDN|DDN|RDN|PAR|ALT|DIM|SMT|VAR|EIT|CSE|EXP|ARG|ID)>"
 _DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
 # Whitespace and comments are folded into the item after them: one match per
 # item keeps the Python loop short on modules with tens of thousands of targets.
-_OUTLINE = re.compile(
+_OUTLINE = regex.compile(
     r"(?:\s++|![^\r\n]*+)*+(?:"
     r"(?P<frame_decl>" + _DECL_HEAD + r"(?:wobjdata|tooldata|pose)\b" + _DECL_REST + ")"
     # a run of other declarations (a path module's 20,000 robtargets) is one match
@@ -79,11 +80,11 @@ _OUTLINE = re.compile(
     r"|(?P<eof>\Z))",
     re.IGNORECASE,
 )
-_TRIVIA = re.compile(r"(?:\s++|![^\r\n]*+)*+")
-_BAD_NUMBER = re.compile(
+_TRIVIA = regex.compile(r"(?:\s++|![^\r\n]*+)*+")
+_BAD_NUMBER = regex.compile(
     r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
     r"|\.\d*+(?:[.A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]))")
-_NUMBER_RUN = re.compile(r"(?:[eE][+-]|[\w.])*+")
+_NUMBER_RUN = regex.compile(r"(?:[eE][+-]|[\w.])*+")
 _RADIX = re.compile(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
 
 
@@ -170,7 +171,7 @@ def _balanced(chunk: str) -> bool:
     return chunk.count("[") == chunk.count("]")
 
 
-_ONE_DECL = re.compile(r"(?:\s++|![^\r\n]*+)*+(" + _DECL_HEAD + r"\w+" + _DECL_REST + ")", re.IGNORECASE)
+_ONE_DECL = regex.compile(r"(?:\s++|![^\r\n]*+)*+(?P<decl>" + _DECL_HEAD + r"\w+" + _DECL_REST + ")", re.IGNORECASE)
 
 
 def _unbalanced_decl(text: str, start: int, end: int) -> int:
@@ -180,8 +181,8 @@ def _unbalanced_decl(text: str, start: int, end: int) -> int:
         m = _ONE_DECL.match(text, pos, end)
         if m is None:
             break
-        if not _balanced(m.group(1)):
-            return m.start(1)
+        if not _balanced(m.group("decl")):
+            return m.start("decl")
         pos = m.end()
     return start
 
@@ -219,7 +220,7 @@ def _check_numbers(doc: Document) -> None:
 # Strings and comments never span lines in RAPID; "" inside a string reads as
 # two strings back to back, which blanks the same characters. A string not
 # closed on its line runs to the line's end.
-_STRINGS_AND_COMMENTS = re.compile(r'"[^"\r\n]*+"?|![^\r\n]*+')
+_STRINGS_AND_COMMENTS = regex.compile(r'"[^"\r\n]*+"?|![^\r\n]*+')
 _DIGITS_DOTS = re.compile(r"[\d.]*")
 
 
@@ -792,17 +793,17 @@ def _recognise(text: str) -> None:
         for _ in range(3):          # robtarget arrays: [[[x, y, z], [q1, ...], ...], ...]
             aggregate = bracketed(r"\[", r"\]", f"{aggregate}|{element}", gap)
         # atom: NUMBER | aggregate: the parser moves on alike after either
-        _SHORTCUTS = {"LSQB": (re.compile(aggregate), "NUMBER")}
+        _SHORTCUTS = {"LSQB": (regex.compile(aggregate), "NUMBER")}
     parser.recognise(text, "file", _SHORTCUTS)
 
 
 _SHORTCUTS = None
 # one declaration at the head of a run the outline found (`decls`): its words
-_DECL_WORDS = re.compile(
+_DECL_WORDS = regex.compile(
     r"(?:\s++|![^\r\n]*+)*+(?P<decl>(?:(?P<scope>LOCAL|TASK)" + _GAP + r")?(?P<storage>PERS|CONST|VAR)"
     + _GAP + r"(?P<type>\w++|" + _PLACEHOLDER + r")(?:\s|![^\r\n]*+)*+(?P<name>\w++|" + _PLACEHOLDER
     + r")" + _DECL_REST + ")", re.IGNORECASE)
-_MODULE_NAME = re.compile(r"MODULE\b(?:\s|![^\r\n]*+)*+(\w*)", re.IGNORECASE)
+_MODULE_NAME = regex.compile(r"MODULE\b(?:\s|![^\r\n]*+)*+(?P<name>\w*)", re.IGNORECASE)
 
 
 def _other_declarations(doc: Document, regions: list[Region]) -> list["Decl"]:
@@ -814,7 +815,7 @@ def _other_declarations(doc: Document, regions: list[Region]) -> list["Decl"]:
     module = ""
     for r in regions:
         if r.kind == "module":
-            module = _MODULE_NAME.match(text, r.span.start).group(1)
+            module = _MODULE_NAME.match(text, r.span.start).group("name")
             continue
         if r.kind != "decls":
             continue

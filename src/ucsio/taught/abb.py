@@ -29,22 +29,22 @@ from . import Found, TaughtPoint, files_around, is_same_file, same_folder
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number
 from ..geometry.rotations import quat_to_matrix, matvec
-from ..parsing import rapid
+from ..parsing import rapid, regex
 from ..parsing.controller import ABB_SUFFIXES, ControllerFile
 from ..parsing.document import Document, Span
 from ..parsing.lalr import Rejected, Token, Tree
 
 # One statement: everything up to the next ';' outside strings and comments.
-_STATEMENT = re.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
-_STRINGS_COMMENTS = re.compile(r'"[^"\r\n]*+"|![^\r\n]*+')
+_STATEMENT = regex.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
+_STRINGS_COMMENTS = regex.compile(r'"[^"\r\n]*+"|![^\r\n]*+')
 _WOBJ = re.compile(r"\\\s*WObj\s*:=", re.I)
 _WOBJ_NAMED = re.compile(r"\\\s*WObj\s*:=\s*([A-Za-z_]\w*(?:\s*\{[^}]*\})?)", re.I)
 _GAP = r"(?:\s|![^\r\n]*+)*+"
-_ROBTARGET_DECL = re.compile(_GAP + r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)"
-                             + _GAP + r"robtarget\b" + _GAP + r"(\w+)", re.I)
+_ROBTARGET_DECL = regex.compile(_GAP + r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)"
+                             + _GAP + r"robtarget\b" + _GAP + r"(?P<name>\w+)", re.I)
 # a routine's head: [LOCAL] PROC name(params) | TRAP name | FUNC type name(params)
-_LEAD = re.compile(_GAP)
-_ROUTINE_HEAD = re.compile(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
+_LEAD = regex.compile(_GAP)
+_ROUTINE_HEAD = regex.compile(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
                            + _GAP + r"\w+" + _GAP + r"(?:\([^)]*\))?", re.I)
 _OFFSET_FUNCS = {"offs", "reltool"}
 # A robtarget written out in the controller's own plain form (no comment or
@@ -52,19 +52,27 @@ _OFFSET_FUNCS = {"offs", "reltool"}
 # without Lark, as a path module's thousands of targets need. Anything else
 # goes through the grammar.
 _S = r"[ \t\f\r\n]*"
-_NUM = r"([-+]?)" + _S + r"((?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?![\w.])"
+
+
+def _num(k: int) -> str:
+    """The k-th number of a literal target: its sign and its digits."""
+    return (rf"(?P<sign{k}>[-+]?)" + _S
+            + rf"(?P<digits{k}>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)(?![\w.])")
+
+
 _BARE = r"[-+]?" + _S + r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?(?![\w.])"
 
 
-def _nums(k: int) -> str:
-    return r"\[" + _S + (_S + "," + _S).join([_NUM] * k) + _S + r"\]"
+def _nums(first: int, k: int) -> str:
+    """``[n, n, ...]``: k numbers, named from ``first`` on."""
+    return r"\[" + _S + (_S + "," + _S).join(_num(i) for i in range(first, first + k)) + _S + r"\]"
 
 
 _ANY_NUMS = r"\[" + _S + _BARE + r"(?:" + _S + "," + _S + _BARE + r")*" + _S + r"\]"
-_LITERAL_TARGET = re.compile(
-    _GAP + r"(?:(LOCAL|TASK)[ \t\f\r\n]+)?(?:PERS|CONST|VAR)[ \t\f\r\n]+robtarget[ \t\f\r\n]+"
-    r"([A-Za-z_][A-Za-z0-9_]*)" + _S + ":=" + _S + r"\[" + _S + _nums(3) + _S + "," + _S
-    + _nums(4) + _S + "," + _S + _ANY_NUMS + _S + "," + _S + _ANY_NUMS + _S + r"\]" + _S + r";\Z",
+_LITERAL_TARGET = regex.compile(
+    _GAP + r"(?:(?P<scope>LOCAL|TASK)[ \t\f\r\n]+)?(?:PERS|CONST|VAR)[ \t\f\r\n]+robtarget[ \t\f\r\n]+"
+    r"(?P<name>[A-Za-z_][A-Za-z0-9_]*)" + _S + ":=" + _S + r"\[" + _S + _nums(0, 3) + _S + ","
+    + _S + _nums(3, 4) + _S + "," + _S + _ANY_NUMS + _S + "," + _S + _ANY_NUMS + _S + r"\]" + _S + r";\Z",
     re.I)
 # instructions whose first argument is the cartesian target (not MoveAbsJ,
 # MoveExtJ: joint targets; not SearchL: a signal comes first)
@@ -90,15 +98,15 @@ class _LiteralTarget:
     dims = None
 
     def __init__(self, m: re.Match, doc: Document):
-        self.scope = m.group(1).upper() if m.group(1) else None
-        self.name = m.group(2)
+        self.scope = m.group("scope").upper() if m.group("scope") else None
+        self.name = m.group("name")
         nums = []
         for k in range(7):
-            sign, digits = m.group(3 + 2 * k), m.group(4 + 2 * k)
-            start = m.start(3 + 2 * k) if sign else m.start(4 + 2 * k)
+            sign, digits = m.group(f"sign{k}"), m.group(f"digits{k}")
+            start = m.start(f"sign{k}") if sign else m.start(f"digits{k}")
+            end = m.end(f"digits{k}")
             value = float(digits) * (-1.0 if sign == "-" else 1.0)
-            nums.append(Number(Span(start, m.end(4 + 2 * k)), doc.text[start:m.end(4 + 2 * k)],
-                               value))
+            nums.append(Number(Span(start, end), doc.text[start:end], value))
         self.start = nums[0].span.start
         self.value = [nums[:3], nums[3:], [], []]
 
@@ -162,7 +170,7 @@ def _read_module(doc: Document) -> _Module:
         for m in _STATEMENT.finditer(text, pos, end):
             decl = _ROBTARGET_DECL.match(text, m.start(), m.end())
             if decl:
-                mod.targets.append((decl.group(1).casefold(),
+                mod.targets.append((decl.group("name").casefold(),
                                     rapid.Region("decl", Span(m.start(), m.end()))))
             elif r.kind == "routine":
                 bare = _STRINGS_COMMENTS.sub(lambda x: " " * len(x.group()), m.group())

@@ -1,0 +1,181 @@
+"""Possessive quantifiers and atomic groups on every CPython ucsio supports.
+
+ucsio's scanners stay linear on hostile text because their loops never
+give back what they matched: ``X*+``, ``X++``, ``X?+``, ``X{m,n}+`` and
+``(?>X)``, new in Python 3.11's ``re``. Before 3.11.5 those match wrongly
+where the repeated group has alternatives (gh-106052, gh-100061): on Debian
+12's own python3 (3.11.2) every RAPID routine went unrecognised.
+
+``compile`` therefore hands such a Python the same pattern in the older
+spelling of an atomic group, which every ``re`` has always run correctly:
+a lookahead (atomic in ``re``: never re-entered on backtracking) captures
+what ``X`` matches, and a backreference consumes exactly that:
+
+    (?>X)   ->  (?:(?=(?P<_pN>X))(?-i:(?P=_pN)))
+    X*+     ->  (?:(?=(?P<_pN>X*))(?-i:(?P=_pN)))
+
+The backreference is compared case-sensitively: it is the same text, and a
+case-folding comparison is twice as slow. Where ``re`` is sound the pattern
+is compiled as written (the lookahead form costs about 1.3x).
+
+A pattern given to ``compile`` names its capturing groups (``(?P<kind>…)``):
+the rewriting adds groups, which would renumber unnamed ones.
+"""
+from __future__ import annotations
+
+import os
+import re
+import sys
+
+NATIVE = sys.version_info >= (3, 11, 5) and not os.environ.get("UCSIO_PORTABLE_REGEX")
+"""Whether this Python's ``re`` runs possessive quantifiers and atomic groups
+correctly (CPython 3.11.5 and later). UCSIO_PORTABLE_REGEX=1 takes the
+rewritten patterns anyway (the tests run them on every Python)."""
+
+PATTERNS: list[str] = []
+"""Every pattern given to ``compile`` (tests rewrite each and compare)."""
+
+
+def compile(pattern: str, flags: int = 0) -> re.Pattern:
+    """``re.compile``, with possessive quantifiers and atomic groups rewritten
+    where this Python's ``re`` gets them wrong."""
+    PATTERNS.append(pattern)
+    return re.compile(pattern if NATIVE else portable(pattern), flags)
+
+
+class _Rewriter:
+    def __init__(self, pattern: str):
+        self.p = pattern
+        self.n = 0
+        self.used = set(re.findall(r"\(\?P<(\w+)>", pattern))
+        self.numbered = False       # an unnamed group or a backreference by number
+
+
+    def name(self) -> str:
+        while True:
+            self.n += 1
+            name = f"_p{self.n}"
+            if name not in self.used:
+                return name
+
+    def once(self, body: str) -> str:
+        name = self.name()
+        return f"(?:(?=(?P<{name}>{body}))(?-i:(?P={name})))"
+
+    # -- one sequence: atoms, each maybe quantified, until ``)`` or the end ----
+    def sequence(self, i: int) -> tuple[str, int]:
+        p = self.p
+        out: list[str] = []
+        while i < len(p) and p[i] != ")":
+            c = p[i]
+            if c == "|":
+                out.append(c)
+                i += 1
+                continue
+            atom, i = self.atom(i)
+            quant, i = _quantifier(p, i)
+            if quant and i < len(p) and p[i] == "+":      # possessive
+                out.append(self.once(atom + quant))
+                i += 1
+            else:
+                if quant and i < len(p) and p[i] == "?":  # lazy
+                    quant += "?"
+                    i += 1
+                out.append(atom + quant)
+        return "".join(out), i
+
+    def atom(self, i: int) -> tuple[str, int]:
+        p = self.p
+        c = p[i]
+        if c == "\\":
+            end = _escape_end(p, i)
+            if p[i + 1] in "123456789" and end - i <= 3:
+                self.numbered = True                     # a backreference by number
+            return p[i:end], end
+        if c == "[":
+            end = _class_end(p, i)
+            return p[i:end], end
+        if c == "(":
+            return self.group(i)
+        return c, i + 1
+
+    def group(self, i: int) -> tuple[str, int]:
+        p = self.p
+        if p.startswith("(?#", i):                         # comment
+            end = p.index(")", i) + 1
+            return p[i:end], end
+        if p.startswith("(?P=", i):                        # named backreference
+            end = p.index(")", i) + 1
+            return p[i:end], end
+        m = _GROUP_HEAD.match(p, i)
+        if m is None:
+            raise ValueError(f"unsupported group at {i}: {p[i:i + 10]!r}")
+        head = m.group()
+        if head.endswith(")"):
+            return head, m.end()                           # (?i): flags for the whole pattern
+        if head == "(":
+            self.numbered = True
+        body, j = self.sequence(m.end())
+        if j >= len(p) or p[j] != ")":
+            raise ValueError(f"unbalanced parenthesis at {i}")
+        if head == "(?>":
+            return self.once(body), j + 1
+        return f"{head}{body})", j + 1
+
+
+# (?:  (?P<name>  (?=  (?!  (?<=  (?<!  (?>  (?flags:  (?flags)  (
+_GROUP_HEAD = re.compile(r"\((?:\?(?::|P<\w+>|=|!|<=|<!|>|[aiLmsux]*(?:-[imsx]+)?[:)]))?")
+_QUANT = re.compile(r"[*+?]|\{(?:\d+(?:,\d*)?|,\d+)\}")
+
+
+def _quantifier(p: str, i: int) -> tuple[str, int]:
+    m = _QUANT.match(p, i)
+    return (m.group(), m.end()) if m else ("", i)
+
+
+def _escape_end(p: str, i: int) -> int:
+    """End of the escape at p[i] == '\\' (re's rules: \\0 and up to two
+    octal digits; three octal digits; else \\1 .. \\99, a backreference)."""
+    c = p[i + 1]
+    if c in "xuU":
+        return i + {"x": 4, "u": 6, "U": 10}[c]
+    if c == "N":
+        return p.index("}", i) + 1
+    if c == "0":
+        j = i + 2
+        while j < len(p) and j < i + 4 and p[j] in "01234567":
+            j += 1
+        return j
+    if c.isdigit():
+        if c in "01234567" and len(p) >= i + 4 and all(d in "01234567" for d in p[i + 2:i + 4]):
+            return i + 4
+        return i + 3 if i + 2 < len(p) and p[i + 2].isdigit() else i + 2
+    return i + 2
+
+
+def _class_end(p: str, i: int) -> int:
+    """End of the character class starting at p[i] == '['."""
+    j = i + 1
+    if j < len(p) and p[j] == "^":
+        j += 1
+    if j < len(p) and p[j] == "]":       # a ] first is a literal
+        j += 1
+    while p[j] != "]":
+        j += 2 if p[j] == "\\" else 1
+    return j + 1
+
+
+def portable(pattern: str) -> str:
+    """``pattern`` with every possessive quantifier and atomic group written
+    as a capturing lookahead and a backreference (see the module's doc);
+    ValueError for a pattern that cannot be rewritten safely (an unnamed
+    capturing group, a numbered backreference)."""
+    rewriter = _Rewriter(pattern)
+    out, i = rewriter.sequence(0)
+    if i != len(pattern):
+        raise ValueError(f"unbalanced parenthesis at {i}")
+    if rewriter.n and rewriter.numbered:
+        raise ValueError("a pattern with possessive quantifiers or atomic groups names its "
+                         "capturing groups (?P<name>...) and backreferences (?P=name): "
+                         "the rewriting adds groups, which would renumber the others")
+    return out
