@@ -16,11 +16,26 @@ def code_blocks(lang: str) -> list[str]:
     return re.findall(r"```" + lang + r"\n(.*?)```", README, re.S)
 
 
-def test_first_command_makes_a_virtual_environment():
-    first = code_blocks("sh")[0].splitlines()[0]
-    assert first.startswith("python -m venv .venv && . .venv/bin/activate && ")
+def test_first_two_lines_make_a_virtual_environment_with_python3():
+    """Stock Debian and Ubuntu have python3 and no python: each line starts
+    with python3 and stands on its own."""
+    first, second = code_blocks("sh")[0].splitlines()[:2]
+    for line in (first, second):
+        assert line.startswith("python3 -m venv .venv && . .venv/bin/activate && python -m pip ")
     assert first.endswith("python -m pip install . && ucsio demo")
+    assert second.endswith("python -m pip install '.[test]' && python -m pytest -q")
     assert "ucsio demo --out DIR" in README and "replay.sh" in README
+
+
+def test_readme_says_which_pythons_and_how_on_windows():
+    import tomllib
+    head = README[:3000]
+    requires = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["requires-python"]
+    assert requires == ">=3.11"
+    assert "CPython 3.11 or later" in head
+    for version in ("3.11.2", "3.12", "3.13"):
+        assert version in head
+    assert "py -3 -m venv .venv" in head and ".venv\\Scripts\\activate" in head
 
 
 def test_measurement_example_is_read_as_written(tmp_path):

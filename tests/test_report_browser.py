@@ -11,8 +11,9 @@ driven through the DevTools protocol (tests/browser.py).
   within tolerances, not by pixels. ``UCSIO_UPDATE_LAYOUT=1`` rewrites it
   after an intended change of the page.
 
-Without Chromium the tests fail, saying how to install it; set
-``UCSIO_SKIP_BROWSER=1`` to skip them knowingly.
+Without Chromium the tests are skipped, and pytest's summary says why and
+how to install it; ``.ci/run`` sets ``UCSIO_REQUIRE_BROWSER=1``, under which
+a missing browser is a failure, never a skip.
 """
 from __future__ import annotations
 
@@ -40,10 +41,12 @@ SECTIONS = ["#top", "#meta", "#actions", "#summary", "#stations", "#groups", "#h
 def chromium():
     path = find_chromium()
     if path is None:
-        if os.environ.get("UCSIO_SKIP_BROWSER"):
-            pytest.skip("UCSIO_SKIP_BROWSER is set and no Chromium is installed")
-        pytest.fail("Chromium is not installed: apt-get install -y chromium (.ci/run does it), "
-                    "or set UCSIO_SKIP_BROWSER=1 to skip the browser tests knowingly")
+        how = ("Chromium is not installed (sudo apt-get install chromium; .ci/run installs it "
+               "where it may)")
+        if os.environ.get("UCSIO_REQUIRE_BROWSER"):
+            pytest.fail(f"{how}, and UCSIO_REQUIRE_BROWSER is set: the report's browser "
+                        "tests must run")
+        pytest.skip(f"{how}: the report's browser tests did not run")
     return path
 
 
