@@ -736,3 +736,51 @@ def test_entry_name_wins_over_a_label_spelled_like_it():
            b'BASE_NAME[2,]="BASE_DATA[1]"\nENDDAT\n')
     cf = krl.parse(Document(raw, "$config.dat"))
     assert cf.frame("base_data[1]").pose.x == 1.0
+
+
+# -- declarations of real KRC system files (issue 18, point 3) -------------------------
+def test_system_file_declarations_are_read():
+    """CHANNEL ($custom.dat), EXTFCTP with named parameters ($OPERATE.dat), STRUC
+    members without the comma before a new type, IMPORT: accepted by the fast
+    path and the whole tree alike; the file checks clean."""
+    path = FIXTURES / "custom_declarations.dat"
+    doc = Document.read(path)
+    cf = both(doc)
+    full = krl.parse(doc, full=True)
+    assert snapshot(full) == snapshot(cf)
+    assert [f.name for f in cf.frames] == ["$SINGUL_ERR_JOG"]
+    # a partial FRAME outside the tool/base tables is legal KRL: an info, not a warning
+    (lint,) = cf.lints
+    assert (lint.code, lint.severity, lint.line) == ("missing-component", "info", 24)
+    assert doc.to_bytes() == path.read_bytes()
+
+
+@pytest.mark.parametrize("line", [
+    "CHANNEL :SER_1 :SER_1 $PSER_1",
+    "CHANNEL :PG :SER_1 $PPG ;PG",
+    "EXTFCTP  INT INTERIMENERGY(CHAR STRVAR[256] :IN)",
+    "EXTFCTP  BOOL GETSYSSTATE(CHAR CMD[64] :IN,INT IPAR :OUT,REAL RPAR :OUT)",
+    "EXT  P00 (P00_COMMAND  :IN,FUNCT_TYPE  :IN,CHAR [] :OUT,INT  :IN )",
+    "GLOBAL STRUC S_A INT ID, n CHAR name[24], REAL w",
+    "IMPORT INT MY_COUNT IS /R1/MYDATA..COUNT",
+])
+def test_each_system_declaration_alone(line):
+    cf = both(doc_of(wrap(line + "\n")))
+    assert cf.lints == [] and cf.frames == []
+
+
+@pytest.mark.parametrize("line, col", [
+    ("CHANNEL SER_1 :SER_1 $PSER_1", 9),          # the colon is part of the syntax
+    ("CHANNEL :SER_1 :SER_1", 22),
+    ("EXTFCTP INT F(CHAR S[256] :IN", 30),
+    ("IMPORT INT X IS R1..Y", 17),
+])
+def test_broken_system_declarations_are_refused_where_they_break(line, col):
+    with pytest.raises(UcsioError) as e:
+        krl.parse(doc_of(wrap(line + "\n")), full=True)
+    assert e.value.line == 4 and e.value.col == col, str(e.value)
+
+
+def test_partial_table_frame_is_still_a_warning():
+    cf = both(doc_of(wrap("DECL FRAME BASE_DATA[2]\nBASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5}\n")))
+    assert [(lint.code, lint.severity) for lint in cf.lints] == [("missing-component", "warning")]

@@ -10,12 +10,14 @@ Encoding: a UTF-8 BOM or valid UTF-8 is read as UTF-8; anything else as
 Latin-1. Latin-1 maps every byte to one character and back, so Windows-1252
 files (KUKA umlauts, Spanish comments) round-trip byte for byte even where
 cp1252 leaves a byte undefined. Line endings are never translated: the text
-keeps CR, LF, CRLF and ABB's CR CR LF exactly as they were.
+keeps CR, LF, CRLF and ABB's CR CR LF exactly as they were; lines are counted
+by one rule for every language (``line_starts``).
 """
 from __future__ import annotations
 
 import bisect
 import os
+import re
 
 from ..errors import UcsioError
 from ..files import read_bytes
@@ -68,19 +70,10 @@ class Document:
     # -- positions -------------------------------------------------------
     @property
     def line_starts(self) -> list[int]:
-        """Offsets where lines start. A line ends at LF (so CRLF and ABB's
-        CR CR LF are one ending each); a file with CR alone (classic Mac)
-        ends its lines at CR."""
+        """Offsets where lines start, by ``line_starts`` (one rule for every
+        language: LF, CRLF and ABB's CR CR LF end a line, and so does a bare CR)."""
         if self._line_starts is None:
-            starts = [0]
-            text = self.text
-            eol = "\n" if "\n" in text or "\r" not in text else "\r"
-            find = text.find
-            i = find(eol)
-            while i != -1:
-                starts.append(i + 1)
-                i = find(eol, i + 1)
-            self._line_starts = starts
+            self._line_starts = line_starts(self.text)
         return self._line_starts
 
     def line_col(self, offset: int) -> tuple[int, int]:
@@ -140,17 +133,59 @@ class Document:
 
 
 
-def text_lines(text: str, eol: str | None = None) -> list[str]:
-    """Lines without their endings, for showing diffs: CRLF and CR CR LF lose
-    their CRs, and a final newline ends the last line (it adds none). A file
-    with bare-CR endings only (classic Mac, some KRC tools) ends lines at CR,
-    as Document.line_starts does (``eol``: the whole file's, for a part of it)."""
-    if eol is None:
-        eol = "\n" if "\n" in text or "\r" not in text else "\r"
-    lines = text.split(eol)
-    if lines and lines[-1] == "":
-        lines.pop()
-    return [ln.rstrip("\r") for ln in lines]
+# A run of CRs and the LF after it is one line ending (CRLF, ABB's CR CR LF);
+# a CR with no LF after its run ends a line by itself (classic Mac, a KRC
+# conversion script's mixed files): ``; note\rBASE_DATA[1]=...`` is two lines.
+_CR_RUN = re.compile(r"\r+\n?")
+
+
+def line_starts(text: str) -> list[int]:
+    """Offsets where lines start: 0, and after every line ending (above).
+    Linear in the text, however many CRs stand in a row."""
+    starts = [0]
+    append = starts.append
+    if "\r" not in text:
+        find = text.find
+        i = find("\n")
+        while i != -1:
+            append(i + 1)
+            i = find("\n", i + 1)
+        return starts
+    pos = 0
+    for m in _CR_RUN.finditer(text):
+        lf = text.find("\n", pos, m.start())        # the plain LFs before this run
+        while lf != -1:
+            append(lf + 1)
+            lf = text.find("\n", lf + 1, m.start())
+        if text.endswith("\n", 0, m.end()):          # CR ... CR LF: one ending
+            append(m.end())
+        else:                                        # bare CRs: one ending each
+            starts.extend(range(m.start() + 1, m.end() + 1))
+        pos = m.end()
+    lf = text.find("\n", pos)
+    while lf != -1:
+        append(lf + 1)
+        lf = text.find("\n", lf + 1)
+    return starts
+
+
+def text_lines(text: str) -> list[str]:
+    """Lines without their endings (``line_starts``' rule), for showing diffs;
+    a final line ending adds no line."""
+    starts = line_starts(text)
+    if starts[-1] != len(text):
+        starts.append(len(text))
+    return [text[s:e].rstrip("\r\n") for s, e in zip(starts, starts[1:])]
+
+
+def lf_lines(text: str) -> str:
+    """``text`` with every bare CR (one that ends a line by itself) made an LF:
+    the same length and offsets, for scanners and grammars whose lines end
+    at LF (KRL)."""
+    if "\r" not in text:
+        return text
+    return _CR_RUN.sub(lambda m: m.group() if m.group().endswith("\n") else "\n" * len(m.group()),
+                       text)
 
 
 def looks_binary(raw: bytes, limit: int = 4096) -> bool:

@@ -53,7 +53,7 @@ from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
 from . import regex
 from .controller import ControllerFile
-from .document import Document, Span
+from .document import Document, Span, lf_lines
 from .lalr import Rejected, Token, Tree
 
 VENDOR = "kuka"
@@ -579,12 +579,11 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
 
 def _lines(doc: Document) -> str:
     """The text the grammar reads: lines end at LF."""
-    text = doc.text
-    if "\r" in text and "\n" not in text:
-        # bare-CR line endings (some KRC tools save them): lines end at CR, as
-        # Document.line_starts counts them. The grammar ends lines at LF, so it
-        # reads a copy with LF for CR; same length, so every offset holds.
-        text = text.replace("\r", "\n")
+    # A bare CR ends a line (CR-only files from some KRC tools, mixed ones
+    # from conversion scripts), as Document.line_starts counts lines: the
+    # grammar, whose lines end at LF, reads a copy with LF for each bare CR;
+    # same length, so every offset holds.
+    text = lf_lines(doc.text)
     if not text.strip():
         # a fragment may hold any statements, but none at all is a failed transfer
         raise doc.error("empty file: no KRL data (DEFDAT ... ENDDAT or declarations)", 0)
@@ -835,9 +834,17 @@ class _Interpreter:
         fr.numbers = {c: nums[c] for c in COMPONENTS if c in nums}
         missing = [c.upper() for c in COMPONENTS if c not in nums]
         if missing:
-            self.lint(v.start, "missing-component",
-                      f"{name}: component{'s' if len(missing) > 1 else ''} "
-                      f"{', '.join(missing)} missing: the frame has no complete value")
+            plural = "s" if len(missing) > 1 else ""
+            if name.upper().startswith(("TOOL_DATA[", "BASE_DATA[")):
+                self.lint(v.start, "missing-component",
+                          f"{name}: component{plural} {', '.join(missing)} missing: the frame "
+                          "has no complete value")
+            else:
+                # legal in a declaration (they stay undefined): KSS's own
+                # $custom.dat has FRAME $SINGUL_ERR_PRO={A 0.0,B 0.0,C 0.0}
+                self.lint(v.start, "missing-component",
+                          f"{name}: component{plural} {', '.join(missing)} not given (undefined "
+                          "until set); listed without numbers, not patchable", severity="info")
         else:
             fr.pose = Pose.from_abc(*(nums[c].value for c in COMPONENTS))
         return fr
@@ -990,10 +997,10 @@ def positions(doc: Document, full: bool = True) -> list[Position]:
     lines and the layout lines, the rest blanked. A position whose X, Y, Z,
     A, B or C is missing or not a number has no pose and a ``problem``
     (file:line:col) for whoever needs it."""
+    text = lf_lines(doc.text)
     if full:
-        tree = _parse(doc, doc.text, "file")
+        tree = _parse(doc, text, "file")
     else:
-        text = doc.text
         nl_text = "\n" + text
         spans = [(m.start(1) - 1, m.end(1) - 1) for m in _POSITION_LINE.finditer(nl_text)]
         if not spans:

@@ -67,8 +67,8 @@ _OUTLINE = regex.compile(
     r"(?:\s++|![^\r\n]*+)*+(?:"
     r"(?P<frame_decl>" + _DECL_HEAD + r"(?:wobjdata|tooldata|pose)\b" + _DECL_REST + ")"
     # a run of other declarations (a path module's 20,000 robtargets) is one match
-    r"|(?P<decls>" + _DECL_HEAD + r"(?:\w+|" + _PLACEHOLDER + ")" + _DECL_REST
-    + r"(?:(?:\s++|![^\r\n]*+)*+" + _DECL_HEAD + r"(?!(?:wobjdata|tooldata|pose)\b)\w+"
+    r"|(?P<decls>" + _DECL_HEAD + r"(?:\w++|" + _PLACEHOLDER + ")" + _DECL_REST
+    + r"(?:(?:\s++|![^\r\n]*+)*+" + _DECL_HEAD + r"(?!(?:wobjdata|tooldata|pose)\b)\w++"
     + _DECL_REST + r")*+)"
     r"|(?P<header>%%%[\s\S]*?%%%)"
     r"|(?P<module>MODULE\b(?:\s|![^\r\n]*+)*+\w*(?:[ \t]|![^\r\n]*+)*+(?:\([^)\r\n]*\))?)"
@@ -171,7 +171,7 @@ def _balanced(chunk: str) -> bool:
     return chunk.count("[") == chunk.count("]")
 
 
-_ONE_DECL = regex.compile(r"(?:\s++|![^\r\n]*+)*+(?P<decl>" + _DECL_HEAD + r"\w+" + _DECL_REST + ")", re.IGNORECASE)
+_ONE_DECL = regex.compile(r"(?:\s++|![^\r\n]*+)*+(?P<decl>" + _DECL_HEAD + r"\w++" + _DECL_REST + ")", re.IGNORECASE)
 
 
 def _unbalanced_decl(text: str, start: int, end: int) -> int:

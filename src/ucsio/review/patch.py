@@ -514,12 +514,8 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     bottom = bisect.bisect_right(starts, len(old_text) - tail) + n + 1
     begin = starts[top]
     end = starts[bottom] if bottom < len(starts) else len(old_text)
-    eol = "\n" if "\n" in old_text or "\r" not in old_text else "\r"
-    if eol != ("\n" if "\n" in new_text or "\r" not in new_text else "\r"):
-        top, begin, end = 0, 0, len(old_text)   # the edit changed what ends a line: all of it
-    a = text_lines(old_text[begin:end], eol)
-    b = text_lines(new_text[begin:end + len(new_text) - len(old_text)],
-                   None if end == len(old_text) and begin == 0 else eol)
+    a = text_lines(old_text[begin:end])
+    b = text_lines(new_text[begin:end + len(new_text) - len(old_text)])
     lo, limit = 0, min(len(a), len(b))
     while lo < limit and a[lo] == b[lo]:
         lo += 1
