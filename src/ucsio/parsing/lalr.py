@@ -26,7 +26,7 @@ import gc
 
 from . import regex
 
-FORMAT = 1          # bump when the shape of the tables changes (the disk cache keys on it)
+FORMAT = 2          # bump when the shape of the tables changes (the disk cache keys on it)
 
 
 class Rejected(Exception):
@@ -121,18 +121,31 @@ def tables_from_lark(lark) -> dict:
         lexer = frontend.lexer.lexers[state]
         if id(lexer) not in seen:
             seen[id(lexer)] = len(lexers)
-            scanner = lexer.scanner         # built on first use
-            if len(scanner._mres) != 1:     # pragma: no cover - over 100 terminals in one state
-                raise ValueError("a lexer state needs more than one regular expression")
-            keywords = {t: [(s.pattern, s.flags) for s in cb.scanner._mres]
-                        for t, cb in lexer.callback.items()}
-            lexers.append((scanner._mres[0].pattern, scanner._mres[0].flags,
-                           sorted(lexer.ignore_types), keywords))
+            lexers.append(_lexer_spec(lexer))
         lexer_of.append(seen[id(lexer)])
     return {"format": FORMAT, "states": states, "rules": rules, "lexers": lexers,
+            "root": _lexer_spec(frontend.lexer.root_lexer),
             "lexer_of": lexer_of, "start": dict(table.start_states),
             "end": dict(table.end_states),
             "terminals": {t.name: t.pattern.to_regexp() for t in lark.terminals}}
+
+
+def _lexer_spec(lexer) -> list:
+    """One of Lark's lexers as data: its regular expression (one named group
+    per terminal, in Lark's priority order), flags, ignored terminals, the
+    keyword retyping of its terminals ({terminal: [(regex, flags)]}, Lark's
+    UnlessCallback), and what it can produce ({terminal: [the terminal and
+    the keywords it is retyped to]})."""
+    scanner = lexer.scanner             # built on first use
+    if len(scanner._mres) != 1:         # pragma: no cover - over 100 terminals in one state
+        raise ValueError("a lexer state needs more than one regular expression")
+    keywords = {t: [(s.pattern, s.flags) for s in cb.scanner._mres]
+                for t, cb in lexer.callback.items()}
+    produces = {t.name: [t.name] for t in scanner.terminals}
+    for t, cb in lexer.callback.items():
+        produces.setdefault(t, [t]).extend(sorted(k.name for k in cb.scanner.terminals))
+    return [scanner._mres[0].pattern, scanner._mres[0].flags, sorted(lexer.ignore_types),
+            keywords, produces]
 
 
 # -- the run-time parser ------------------------------------------------------------
@@ -150,8 +163,23 @@ class Parser:
         self._lexer_of = tables["lexer_of"]
         self._compiled: list = [None] * len(self._lexer_specs)
         # lexers[state]: (match, ignored terminals, keyword retyping), filled
-        # the first time the state lexes (a short file visits a few states)
+        # the first time the state lexes without the root lexer (below)
         self.lexers: list = [None] * len(self.actions)
+        # The root lexer, every terminal in one regular expression, lexes
+        # first in every state; where what it reads is not what the state's
+        # own lexer would read (a terminal the state does not take, a keyword
+        # it does not know), that lexer reads again. Each state's lexer is a
+        # regular expression of its own: compiling one is 0.3-1.5 ms of pure
+        # Python, and a short file visits a dozen of them, where the root
+        # lexer is compiled once. The two agree: Lark orders every lexer's
+        # terminals by one key, so the first of the root's terminals to
+        # match, if the state has it, is the first of the state's too.
+        self._root_spec = tables["root"]
+        self._root = None
+        specs = [(frozenset(ignore), {t: frozenset(kinds) for t, kinds in produces.items()})
+                 for _, _, ignore, _, produces in self._lexer_specs]
+        # per state: (ignored terminals, {terminal: what the state reads it as})
+        self.reads = [specs[i] for i in self._lexer_of]
         self.start_states = tables["start"]
         self.end_states = tables["end"]
         self.terminals: dict[str, str] = tables["terminals"]
@@ -160,11 +188,31 @@ class Parser:
         i = self._lexer_of[state]
         got = self._compiled[i]
         if got is None:
-            pattern, flags, ignore, keywords = self._lexer_specs[i]
+            pattern, flags, ignore, keywords, _ = self._lexer_specs[i]
             kw = {t: _fullmatcher(specs) for t, specs in keywords.items()}
             got = self._compiled[i] = (regex.compile(pattern, flags).match, frozenset(ignore), kw)
         self.lexers[state] = got
         return got
+
+    def _root_lexer(self):
+        if self._root is None:
+            pattern, flags, _, keywords, _ = self._root_spec
+            self._root = (regex.compile(pattern, flags).match,
+                          {t: _fullmatcher(specs) for t, specs in keywords.items()})
+        return self._root
+
+    def _state_lex(self, text: str, pos: int, state: int):
+        """(terminal, match) of the token at ``pos`` as ``state``'s own
+        lexer reads it (where the root lexer read something else); None
+        where nothing matches."""
+        match, _, keywords = self.lexers[state] or self._lexer(state)
+        m = match(text, pos)
+        if m is None:
+            return None
+        kind = m.lastgroup
+        if keywords and kind in keywords:
+            kind = keywords[kind](m.group()) or kind
+        return kind, m
 
     def parse(self, text: str, start: str) -> Tree:
         """The tree of ``text``, as Lark shapes it; Rejected(pos) if ``text``
@@ -173,7 +221,8 @@ class Parser:
             return self._parse(text, start)
 
     def _parse(self, text: str, start: str) -> Tree:
-        actions, rules, builders, lexers = self.actions, self.rules, self.builders, self.lexers
+        actions, rules, builders, reads = self.actions, self.rules, self.builders, self.reads
+        root_match, root_keywords = self._root or self._root_lexer()
         state = self.start_states[start]
         states = [state]
         values: list = []
@@ -183,19 +232,23 @@ class Parser:
         kind = None
         while True:
             if pos < n:
-                match, ignore, keywords = lexers[state] or self._lexer(state)
-                m = match(text, pos)
+                m = root_match(text, pos)
                 if m is None:
-                    raise Rejected(pos)
-                kind = m.lastgroup
+                    raise Rejected(pos)         # no terminal at all matches here
+                kind = alt = m.lastgroup
+                if alt in root_keywords:
+                    kind = root_keywords[alt](m.group()) or alt
+                ignore, reads_as = reads[state]
+                if kind not in reads_as.get(alt, ()):
+                    got = self._state_lex(text, pos, state)
+                    if got is None:
+                        raise Rejected(pos)
+                    kind, m = got
                 end = m.end()
                 if kind in ignore:
                     pos = end
                     continue
-                value = m.group()
-                if keywords and kind in keywords:
-                    kind = keywords[kind](value) or kind
-                token = Token(kind, value, pos, end)
+                token = Token(kind, m.group(), pos, end)
                 pos = end
             else:
                 kind = "$END"
@@ -236,7 +289,8 @@ class Parser:
         tried where the lexer reads ``terminal`` and the parser can take it.
         ``suspects``: {terminal: predicate(text)}: a token for which the
         predicate holds rejects (the caller's full parse looks at it)."""
-        actions, rules, lexers = self.actions, self.rules, self.lexers
+        actions, rules, reads = self.actions, self.rules, self.reads
+        root_match, root_keywords = self._root or self._root_lexer()
         shortcuts, suspects = shortcuts or {}, suspects or {}
         state = self.start_states[start]
         stack = [state]
@@ -244,17 +298,22 @@ class Parser:
         pos = 0
         n = len(text)
         while pos < n:
-            match, ignore, keywords = lexers[state] or self._lexer(state)
-            m = match(text, pos)
+            m = root_match(text, pos)
             if m is None:
                 raise Rejected(pos)
-            kind = m.lastgroup
+            kind = alt = m.lastgroup
+            if alt in root_keywords:
+                kind = root_keywords[alt](m.group()) or alt
+            ignore, reads_as = reads[state]
+            if kind not in reads_as.get(alt, ()):
+                got = self._state_lex(text, pos, state)
+                if got is None:
+                    raise Rejected(pos)
+                kind, m = got
             end = m.end()
             if kind in ignore:
                 pos = end
                 continue
-            if keywords and kind in keywords:
-                kind = keywords[kind](m.group()) or kind
             row = actions[state]
             if kind in shortcuts and kind in row:
                 pattern, instead = shortcuts[kind]
