@@ -14,6 +14,7 @@ import sys
 
 from . import __version__
 from .errors import UcsioError, UsageError, did_you_mean
+from .parsing import regex
 
 COMMANDS = {
     "frames": "list every frame in controller files, backup folders or .zip archives",
@@ -42,7 +43,7 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
 
 
-_INVALID_CHOICE = re.compile(r"^(argument [^:]+: invalid choice: '(.*)') \(choose from (.*)\)$")
+_INVALID_CHOICE = regex.lazy(r"^(argument [^:]+: invalid choice: '(.*)') \(choose from (.*)\)$")
 
 
 def _refuse_unknown(parser: argparse.ArgumentParser, args, extras: list[str]) -> None:
@@ -94,7 +95,7 @@ def _accept_negative_lists(p: argparse.ArgumentParser) -> None:
         p._negative_number_matcher = _NEGATIVE_LIST
 
 
-_NEGATIVE_LIST = re.compile(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
+_NEGATIVE_LIST = regex.lazy(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
 
 
 def main(argv: list[str] | None = None) -> int:

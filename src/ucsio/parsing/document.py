@@ -22,6 +22,7 @@ import re
 from ..errors import UcsioError
 from ..files import read_bytes
 from ..values import Value
+from . import regex
 
 BOM = b"\xef\xbb\xbf"
 
@@ -136,7 +137,7 @@ class Document:
 # A run of CRs and the LF after it is one line ending (CRLF, ABB's CR CR LF);
 # a CR with no LF after its run ends a line by itself (classic Mac, a KRC
 # conversion script's mixed files): ``; note\rBASE_DATA[1]=...`` is two lines.
-_CR_RUN = re.compile(r"\r+\n?")
+_CR_RUN = regex.lazy(r"\r+\n?")
 
 
 def line_starts(text: str) -> list[int]:

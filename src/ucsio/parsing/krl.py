@@ -93,23 +93,23 @@ MACHINE_TABLES = ("MACHINE_FRAME_DAT", "MACHINE_DEF")
 _WS = r"[ \t\f\r]"
 _MODS = _WS + r"*(?:(?:DECL|GLOBAL|CONST)" + _WS + r"+)*"
 # FRAME declarations (group 2 set) and INT MAX_* sizes
-_DECL_LINE = re.compile(r"\n(" + _MODS + r"(?:(FRAME)" + _WS + r"|INT" + _WS + r"+MAX_)[^\n]*)",
+_DECL_LINE = regex.lazy(r"\n(" + _MODS + r"(?:(FRAME)" + _WS + r"|INT" + _WS + r"+MAX_)[^\n]*)",
                         re.I)
-_DEFDAT = re.compile(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]+(PUBLIC)\b)?", re.I | re.M)
+_DEFDAT = regex.lazy(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]+(PUBLIC)\b)?", re.I | re.M)
 # the layout lines: `&` headers (group 1 unset) and lines that start with the
 # word DEFDAT or ENDDAT as the grammar's NAME would end it (group 1 "E" for
 # ENDDAT); and statement lines: not blank, not a comment, not a header
-_LAYOUT_LINE = re.compile(r"\n[ \t\f\r]*(?:&|(?:DEF|(END))DAT(?![A-Za-z0-9_$]))", re.I)
-_STATEMENT_LINE = re.compile(r"\n[ \t\f\r]*[^ \t\f\r\n;&]")
-_IDENT = re.compile(r"[A-Za-z_$][\w$]*")
-_BRACED = re.compile(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
+_LAYOUT_LINE = regex.lazy(r"\n[ \t\f\r]*(?:&|(?:DEF|(END))DAT(?![A-Za-z0-9_$]))", re.I)
+_STATEMENT_LINE = regex.lazy(r"\n[ \t\f\r]*[^ \t\f\r\n;&]")
+_IDENT = regex.lazy(r"[A-Za-z_$][\w$]*")
+_BRACED = regex.lazy(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
 # the left-hand side of an element line: NAME, NAME[...]
-_ASSIGN_LHS = re.compile(r"[ \t\f\r]*[A-Za-z_$][\w$]*[ \t\f\r]*(?:\[[^\]]*\][ \t\f\r]*)?\Z")
+_ASSIGN_LHS = regex.lazy(r"[ \t\f\r]*[A-Za-z_$][\w$]*[ \t\f\r]*(?:\[[^\]]*\][ \t\f\r]*)?\Z")
 # error reporting only: compiled when needed
 _STATEMENT_BEFORE = r"^[ \t\f\r]*[^\s;&]"
 _NUMBER = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z"
 # the field and the NUMBER token the grammar reads as its value
-_MACH_DEF_INDEX = re.compile(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r]*)?"
+_MACH_DEF_INDEX = regex.lazy(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r]*)?"
                              r"([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)",
                              re.I)
 
@@ -119,7 +119,7 @@ _MACH_DEF_INDEX = re.compile(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r
 # names matter is decided in Python with a set: an alternation of every
 # declared name (thousands in a program .dat) made each line cost as many
 # tries as there are names, quadratic in the file.
-_ELEMENT_LINE = re.compile(r"\n(" + _WS + r"*([A-Za-z_$][\w$]*)" + _WS + r"*([\[=])(?:" + _WS +
+_ELEMENT_LINE = regex.lazy(r"\n(" + _WS + r"*([A-Za-z_$][\w$]*)" + _WS + r"*([\[=])(?:" + _WS +
                            r"*([0-9]+))?[^\n]*)")
 
 
@@ -984,7 +984,7 @@ class Position(Value):
 
 
 # the declaration lines positions() needs on the fast path
-_POSITION_LINE = re.compile(r"\n(" + _MODS + r"(?:E6POS|POS|FRAME|FDAT)" + _WS + r"[^\n]*)", re.I)
+_POSITION_LINE = regex.lazy(r"\n(" + _MODS + r"(?:E6POS|POS|FRAME|FDAT)" + _WS + r"[^\n]*)", re.I)
 
 
 def positions(doc: Document, full: bool = True) -> list[Position]:

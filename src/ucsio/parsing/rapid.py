@@ -63,7 +63,7 @@ _PLACEHOLDER = r"<(?:TDN|DDN|RDN|PAR|ALT|DIM|SMT|VAR|EIT|CSE|EXP|ARG|ID)>"
 _DECL_REST = r"(?:[^;\"!]++|" + _STR + r"|![^\r\n]*+)*+;"
 # Whitespace and comments are folded into the item after them: one match per
 # item keeps the Python loop short on modules with tens of thousands of targets.
-_OUTLINE = regex.compile(
+_OUTLINE = regex.lazy(
     r"(?:\s++|![^\r\n]*+)*+(?:"
     r"(?P<frame_decl>" + _DECL_HEAD + r"(?:wobjdata|tooldata|pose)\b" + _DECL_REST + ")"
     # a run of other declarations (a path module's 20,000 robtargets) is one match
@@ -80,12 +80,12 @@ _OUTLINE = regex.compile(
     r"|(?P<eof>\Z))",
     re.IGNORECASE,
 )
-_TRIVIA = regex.compile(r"(?:\s++|![^\r\n]*+)*+")
-_BAD_NUMBER = regex.compile(
+_TRIVIA = regex.lazy(r"(?:\s++|![^\r\n]*+)*+")
+_BAD_NUMBER = regex.lazy(
     r"\d(?:[A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]"
     r"|\.\d*+(?:[.A-DF-Za-df-z_]|[eE](?![+-]?\d)|[eE][+-]?\d++[.A-Za-z_]))")
-_NUMBER_RUN = regex.compile(r"(?:[eE][+-]|[\w.])*+")
-_RADIX = re.compile(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
+_NUMBER_RUN = regex.lazy(r"(?:[eE][+-]|[\w.])*+")
+_RADIX = regex.lazy(r"0(?:[xX][0-9A-Fa-f]+|[oO][0-7]+|[bB][01]+|[dD][0-9]+)(?![\w.])")
 
 
 class Region(Value):
@@ -171,7 +171,7 @@ def _balanced(chunk: str) -> bool:
     return chunk.count("[") == chunk.count("]")
 
 
-_ONE_DECL = regex.compile(r"(?:\s++|![^\r\n]*+)*+(?P<decl>" + _DECL_HEAD + r"\w++" + _DECL_REST + ")", re.IGNORECASE)
+_ONE_DECL = regex.lazy(r"(?:\s++|![^\r\n]*+)*+(?P<decl>" + _DECL_HEAD + r"\w++" + _DECL_REST + ")", re.IGNORECASE)
 
 
 def _unbalanced_decl(text: str, start: int, end: int) -> int:
@@ -220,8 +220,8 @@ def _check_numbers(doc: Document) -> None:
 # Strings and comments never span lines in RAPID; "" inside a string reads as
 # two strings back to back, which blanks the same characters. A string not
 # closed on its line runs to the line's end.
-_STRINGS_AND_COMMENTS = regex.compile(r'"[^"\r\n]*+"?|![^\r\n]*+')
-_DIGITS_DOTS = re.compile(r"[\d.]*")
+_STRINGS_AND_COMMENTS = regex.lazy(r'"[^"\r\n]*+"?|![^\r\n]*+')
+_DIGITS_DOTS = regex.lazy(r"[\d.]*")
 
 
 def _blank(m: re.Match) -> str:
@@ -598,7 +598,7 @@ def _is_literal(v) -> bool:
     return isinstance(v, (Number, bool, str))
 
 
-_BLANKS = re.compile(r"[ \t]*")
+_BLANKS = regex.lazy(r"[ \t]*")
 
 
 def _with_text(doc: Document, n: Number) -> Number:
@@ -799,11 +799,11 @@ def _recognise(text: str) -> None:
 
 _SHORTCUTS = None
 # one declaration at the head of a run the outline found (`decls`): its words
-_DECL_WORDS = regex.compile(
+_DECL_WORDS = regex.lazy(
     r"(?:\s++|![^\r\n]*+)*+(?P<decl>(?:(?P<scope>LOCAL|TASK)" + _GAP + r")?(?P<storage>PERS|CONST|VAR)"
     + _GAP + r"(?P<type>\w++|" + _PLACEHOLDER + r")(?:\s|![^\r\n]*+)*+(?P<name>\w++|" + _PLACEHOLDER
     + r")" + _DECL_REST + ")", re.IGNORECASE)
-_MODULE_NAME = regex.compile(r"MODULE\b(?:\s|![^\r\n]*+)*+(?P<name>\w*)", re.IGNORECASE)
+_MODULE_NAME = regex.lazy(r"MODULE\b(?:\s|![^\r\n]*+)*+(?P<name>\w*)", re.IGNORECASE)
 
 
 def _other_declarations(doc: Document, regions: list[Region]) -> list["Decl"]:

@@ -43,11 +43,30 @@ def compile(pattern: str, flags: int = 0) -> re.Pattern:
     return re.compile(pattern if NATIVE else portable(pattern), flags)
 
 
+class lazy:
+    """A module's pattern, compiled (by ``compile``) when first used: ``re``
+    compiles in pure Python, 0.2-5 ms a pattern, and a command that lists one
+    file's frames needs a few of the many patterns a module holds."""
+
+    __slots__ = ("_source", "_flags", "_compiled")
+
+    def __init__(self, pattern: str, flags: int = 0):
+        self._source, self._flags, self._compiled = pattern, flags, None
+        PATTERNS.append(pattern)
+
+    def __getattr__(self, name: str):
+        compiled = self._compiled
+        if compiled is None:
+            compiled = self._compiled = re.compile(
+                self._source if NATIVE else portable(self._source), self._flags)
+        return getattr(compiled, name)
+
+
 class _Rewriter:
     def __init__(self, pattern: str):
         self.p = pattern
         self.n = 0
-        self.used = set(re.findall(r"\(\?P<(\w+)>", pattern))
+        self.used = set(re.findall(r"\(\?P<(\w+)>", pattern))     # names taken
         self.numbered = False       # an unnamed group or a backreference by number
 
 
@@ -107,7 +126,7 @@ class _Rewriter:
         if p.startswith("(?P=", i):                        # named backreference
             end = p.index(")", i) + 1
             return p[i:end], end
-        m = _GROUP_HEAD.match(p, i)
+        m = _own.group_head.match(p, i)
         if m is None:
             raise ValueError(f"unsupported group at {i}: {p[i:i + 10]!r}")
         head = m.group()
@@ -124,12 +143,22 @@ class _Rewriter:
 
 
 # (?:  (?P<name>  (?=  (?!  (?<=  (?<!  (?>  (?flags:  (?flags)  (
-_GROUP_HEAD = re.compile(r"\((?:\?(?::|P<\w+>|=|!|<=|<!|>|[aiLmsux]*(?:-[imsx]+)?[:)]))?")
-_QUANT = re.compile(r"[*+?]|\{(?:\d+(?:,\d*)?|,\d+)\}")
+class _Own:
+    """The rewriter's own patterns (plain re, compiled when first rewriting)."""
+
+    def __getattr__(self, name: str):
+        value = re.compile(_OWN[name])
+        setattr(self, name, value)
+        return value
+
+
+_OWN = {"group_head": r"\((?:\?(?::|P<\w+>|=|!|<=|<!|>|[aiLmsux]*(?:-[imsx]+)?[:)]))?",
+        "quant": r"[*+?]|\{(?:\d+(?:,\d*)?|,\d+)\}"}
+_own = _Own()
 
 
 def _quantifier(p: str, i: int) -> tuple[str, int]:
-    m = _QUANT.match(p, i)
+    m = _own.quant.match(p, i)
     return (m.group(), m.end()) if m else ("", i)
 
 

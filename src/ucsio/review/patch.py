@@ -46,6 +46,7 @@ from ..errors import UcsioError
 from ..files import atomic_write, write_target
 from ..geometry import rotations as rot
 from ..geometry.frames import Frame, Number, Pose
+from ..parsing import regex
 from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
 from ..values import Value
@@ -559,7 +560,7 @@ def _common_run(a: str, b: str, limit: int, from_end: bool = False) -> int:
     return limit
 
 
-_HUNK = re.compile(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")
+_HUNK = regex.lazy(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")
 
 
 def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,

@@ -35,16 +35,16 @@ from ..parsing.document import Document, Span
 from ..parsing.lalr import Rejected, Token, Tree
 
 # One statement: everything up to the next ';' outside strings and comments.
-_STATEMENT = regex.compile(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
-_STRINGS_COMMENTS = regex.compile(r'"[^"\r\n]*+"|![^\r\n]*+')
-_WOBJ = re.compile(r"\\\s*WObj\s*:=", re.I)
-_WOBJ_NAMED = re.compile(r"\\\s*WObj\s*:=\s*([A-Za-z_]\w*(?:\s*\{[^}]*\})?)", re.I)
+_STATEMENT = regex.lazy(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
+_STRINGS_COMMENTS = regex.lazy(r'"[^"\r\n]*+"|![^\r\n]*+')
+_WOBJ = regex.lazy(r"\\\s*WObj\s*:=", re.I)
+_WOBJ_NAMED = regex.lazy(r"\\\s*WObj\s*:=\s*([A-Za-z_]\w*(?:\s*\{[^}]*\})?)", re.I)
 _GAP = r"(?:\s|![^\r\n]*+)*+"
-_ROBTARGET_DECL = regex.compile(_GAP + r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)"
+_ROBTARGET_DECL = regex.lazy(_GAP + r"(?:(?:LOCAL|TASK)" + _GAP + r")?(?:PERS|CONST|VAR)"
                              + _GAP + r"robtarget\b" + _GAP + r"(?P<name>\w+)", re.I)
 # a routine's head: [LOCAL] PROC name(params) | TRAP name | FUNC type name(params)
-_LEAD = regex.compile(_GAP)
-_ROUTINE_HEAD = regex.compile(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
+_LEAD = regex.lazy(_GAP)
+_ROUTINE_HEAD = regex.lazy(_GAP + r"(?:LOCAL" + _GAP + r")?(?:PROC|TRAP|FUNC" + _GAP + r"\w+)"
                            + _GAP + r"\w+" + _GAP + r"(?:\([^)]*\))?", re.I)
 _OFFSET_FUNCS = {"offs", "reltool"}
 # A robtarget written out in the controller's own plain form (no comment or
@@ -69,14 +69,14 @@ def _nums(first: int, k: int) -> str:
 
 
 _ANY_NUMS = r"\[" + _S + _BARE + r"(?:" + _S + "," + _S + _BARE + r")*" + _S + r"\]"
-_LITERAL_TARGET = regex.compile(
+_LITERAL_TARGET = regex.lazy(
     _GAP + r"(?:(?P<scope>LOCAL|TASK)[ \t\f\r\n]+)?(?:PERS|CONST|VAR)[ \t\f\r\n]+robtarget[ \t\f\r\n]+"
     r"(?P<name>[A-Za-z_][A-Za-z0-9_]*)" + _S + ":=" + _S + r"\[" + _S + _nums(0, 3) + _S + ","
     + _S + _nums(3, 4) + _S + "," + _S + _ANY_NUMS + _S + "," + _S + _ANY_NUMS + _S + r"\]" + _S + r";\Z",
     re.I)
 # instructions whose first argument is the cartesian target (not MoveAbsJ,
 # MoveExtJ: joint targets; not SearchL: a signal comes first)
-_CARTESIAN_MOVE = re.compile(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
+_CARTESIAN_MOVE = regex.lazy(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
 
 
 def _modules(frame: Frame) -> list:
@@ -167,7 +167,15 @@ def _read_module(doc: Document) -> _Module:
             head = _ROUTINE_HEAD.match(text, pos, end)
             if head:
                 pos = head.end()
-        for m in _STATEMENT.finditer(text, pos, end):
+        # statements follow one another up to the last ';' (the recognised
+        # routine's strings and comments are closed, so none fails midway);
+        # match, not finditer: a search would retry every position of the
+        # tail after the last ';', each up to the end (quadratic)
+        while True:
+            m = _STATEMENT.match(text, pos, end)
+            if m is None:
+                break
+            pos = m.end()
             decl = _ROBTARGET_DECL.match(text, m.start(), m.end())
             if decl:
                 mod.targets.append((decl.group("name").casefold(),
@@ -319,7 +327,7 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
     return found
 
 
-_ASSIGNMENT = re.compile(r"\s*[A-Za-z_][\w.{}, ]*:=")
+_ASSIGNMENT = regex.lazy(r"\s*[A-Za-z_][\w.{}, ]*:=")
 
 
 def _unreadable(doc: Document, span: Span, wobj: str, found: Found) -> None:
