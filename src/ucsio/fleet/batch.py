@@ -751,8 +751,8 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
 
                 def unchanged(path=path, raw=cf.document.raw) -> None:
                     try:
-                        same = Path(path).read_bytes() == raw
-                    except OSError:
+                        same = read_bytes(path) == raw
+                    except UcsioError:
                         same = False
                     if not same:
                         raise UcsioError("the file changed on disk since it was read; patched "

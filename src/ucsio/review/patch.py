@@ -744,9 +744,10 @@ def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None
 # ----------------------------------------------------------------- writing
 
 def _same_on_disk(path: str, doc: Document) -> bool:
+    from ..files import read_bytes   # never waits on a pipe put in the file's place
     try:
-        return Path(path).read_bytes() == doc.raw
-    except OSError:
+        return read_bytes(path) == doc.raw
+    except UcsioError:
         return False
 
 
