@@ -356,7 +356,7 @@ def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
         '[[entry]]\nname = "wrong"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
         'frame = "wFix"\ntcp = [15.0, -30.25, 185.0]\n')
     (wrong,) = run_batch(read_manifest(tmp_path / "wrong.toml")).entries
-    assert not wrong.accepted and "--tcp solve" in wrong.reason
+    assert not wrong.accepted and 'tcp = "solve"' in wrong.reason   # the manifest's words
     assert half.error and "laser and robot" in half.error
     assert main(["solve", str(csv), "--tcp", "solve"]) == 0
 
@@ -368,3 +368,40 @@ def test_api_solve_with_tcp_solve(tmp_path):
     sol = api.solve(csv_of(meas, tmp_path / "m.csv"), tcp="solve")
     assert sol.accepted and sol.tcp_solved["solved"] is True
     assert np.linalg.norm(np.array(sol.tcp) - TCP) < 0.5
+
+
+def test_a_wrong_tcp_is_not_told_to_measure_again(tmp_path, capsys):
+    """Issue 18, point 7: the wrong-TCP diagnosis says to check the TCP; the
+    batch table, its report and a patch of the rejected solution must not
+    then end with "measure again", which contradicts it."""
+    meas, _, _ = cell(4, 30)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    (tmp_path / "Cell.mod").write_text(ABB_TOOLS)
+    (tmp_path / "wrong.toml").write_text(
+        '[[entry]]\nname = "wrong"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
+        'frame = "wFix"\ntcp = [15.0, -30.25, 185.0]\n')
+    report = tmp_path / "report.html"
+    assert main(["batch", str(tmp_path / "wrong.toml"), "--report", str(report)]) == 1
+    out = capsys.readouterr().out
+    assert "wrong TCP" in out and 'tcp = "solve"' in out and "measure again" not in out
+    html = report.read_text()
+    assert "wrong TCP" in html and "measure again" not in html
+    assert main(["batch", str(tmp_path / "wrong.toml"), "--json"]) == 1
+    (entry,) = json.loads(capsys.readouterr().out)["entries"]
+    assert entry["diagnosis"]["tcp"] == pytest.approx(list(TCP), abs=0.5)
+    # the rejected solution of `solve`: patch and diff refuse it without "measure again"
+    sol = tmp_path / "wrong.json"
+    assert main(["solve", str(csv), "--tcp", "15,-30.25,185", "-o", str(sol)]) == 1
+    capsys.readouterr()
+    for cmd in ("patch", "diff"):
+        assert main([cmd, str(tmp_path / "Cell.mod"), "--frame", "wFix", "--measured",
+                     str(sol)]) == 1
+        err = capsys.readouterr().err
+        assert "wrong TCP" in err and "measure again" not in err, err
+    # a dataset rejected for its points is still told to measure again
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"accepted": False, "reason": "too few points",
+                               "frame": {"x": 0, "y": 0, "z": 0, "a": 0, "b": 0, "c": 0}}))
+    assert main(["patch", str(tmp_path / "Cell.mod"), "--frame", "wFix", "--measured",
+                 str(bad)]) == 1
+    assert "measure again" in capsys.readouterr().err

@@ -209,6 +209,12 @@ def render(result, patching: bool | None = None) -> str:
     out = [_paint_status(table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9, 10} if points else
                                {2, 3, 4, 5, 6, 7, 8, 9}), [r[0] for r in rows], [r[1] for r in rows])]
     rejected = [r for r in result.entries if r.status == "rejected"]
+    wrong_tcp = [r for r in rejected if getattr(r.solution, "diagnosis", None)]
+    if wrong_tcp:       # the points are fine: the TCP is not (no "measure again")
+        out.append("")
+        out.append("rejected, a wrong TCP (check the TCP):")
+        out.extend(f"  {r.entry.name}: {r.reason}" for r in wrong_tcp)
+    rejected = [r for r in rejected if r not in wrong_tcp]
     if rejected:
         out.append("")
         out.append("rejected (measure again):")

@@ -91,10 +91,11 @@ def solved_tcp_for(cf, args):
     patch on a tool writes the solved TCP's x, y, z and nothing else of it);
     None for every other frame, and where the solution's TCP was given, not
     solved (patch_frame then refuses a world frame for a tool, as before)."""
+    from ..review.names import find_frame
     from ..review.patch import resolve_name, robot_held_tool
     from ..method.solution import solved_tcp
 
-    frame = cf.frame(resolve_name(args.frame, args.oframe))
+    frame = find_frame(cf, resolve_name(args.frame, args.oframe))
     if not robot_held_tool(frame):
         return None
     return solved_tcp(args.solution_data, args.measured, allow_rejected=args.force)

@@ -410,6 +410,8 @@ class EntryResult:
             d["sources"] = en.sources
         if s is not None and getattr(s, "tcp_solved", None):
             d["tcp_solved"] = s.tcp_solved
+        if s is not None and getattr(s, "diagnosis", None):
+            d["diagnosis"] = s.diagnosis
         if self.warnings:
             d["warnings"] = list(self.warnings)
         if self.patched is not None:
@@ -497,7 +499,10 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
     from ..method.tcp_solve import diagnose
     found = diagnose(meas, sol, threshold=en.threshold, min_points=en.min_points,
                      no_exclusion=en.no_exclusion, reach=en.reach, sigma_laser=sigma_laser,
-                     sigma_robot=sigma_robot)
+                     sigma_robot=sigma_robot,
+                     advice="check the entry's tool or tcp in the manifest, or solve the TCP "
+                            "with the frame (tcp = \"solve\"); the points need not be measured "
+                            "again")
     if found:
         sol.diagnosis = found
         sol.reason = f"{sol.reason}; but {found['message']}"
@@ -505,7 +510,8 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
 
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
     file, _, name = spec.rpartition(":")
-    return tool_tcp(cache.controller(file).frame(name))
+    from ..review.names import find_frame
+    return tool_tcp(find_frame(cache.controller(file), name))
 
 
 def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
@@ -556,6 +562,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     """Solve and diff every entry; one entry's failure never stops the run."""
     import time
 
+    from ..review.names import find_frame
+
     t0 = time.perf_counter()
     cache = _Cache()
     results = [EntryResult(entry=e) for e in manifest.entries]
@@ -576,7 +584,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
         try:
             cf = cache.controller(en.controller)
             r.vendor = cf.vendor
-            frame = cf.frame(en.frame)
+            frame = find_frame(cf, en.frame)
             r.frame_file, r.frame_line = frame.file, frame.line
             if frame.pose is None:
                 raise UcsioError(f"frame {frame.name} has no complete value", file=frame.file,

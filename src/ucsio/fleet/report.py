@@ -463,8 +463,8 @@ ACTION_KINDS = (
     ("over tolerance", "Over tolerance: the fixture is not where the simulation has it",
      "check that the fixture sits where the cell layout says; if it does, have the programs "
      "corrected (re-teach, or update the frame in the simulation) before they are downloaded."),
-    ("rejected", "Rejected: the measurement is not good enough to trust",
-     "measure these stations again; each line says what was wrong."),
+    ("rejected", "Rejected: the points do not give a frame to trust",
+     "each line says what was wrong and what to do about it."),
     ("error", "Failed: ucsio could not process these entries",
      "fix the input each line names and run the batch again."),
     ("patch error", "Not patched: the corrected controller file was not written",
@@ -489,9 +489,13 @@ def _why(e: dict) -> tuple[str, str]:
         return why + ".", ""
     if status == "rejected":
         reason = _reason(e)
+        if e.get("diagnosis"):      # a wrong TCP: the points are fine
+            return reason + ".", ("correct the TCP of this entry (its tool or tcp in the "
+                                  "manifest, or tcp = \"solve\") and run the batch again; the "
+                                  "points need not be measured again.")
         todo = ("measure more points, spread over the whole fixture" if "too few" in reason
                 or "pin" in reason else "check the reflector, its TCP, and that the fixture "
-                "did not move while measuring")
+                "did not move while measuring, then measure again")
         return reason + ".", todo + "."
     if status == "error":
         todo = {
@@ -616,7 +620,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
              ("passed", _f(sm.get("passed")), "ok", "passed", "within tolerance"),
              ("over tolerance", _f(sm.get("over_tolerance")), "warn", "over_tolerance",
               "frame moved too far"),
-             ("rejected", _f(sm.get("rejected")), "bad", "rejected", "measure again"),
+             ("rejected", _f(sm.get("rejected")), "bad", "rejected", "points not trusted"),
              ("errors", _f(sm.get("errors")), "err", "errors", "could not be processed"),
              ("success rate", _pct(sm.get("success_rate")), "ok", "success_rate",
               "passed of total")]
@@ -861,8 +865,9 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         body.append(f'<div class="err-msg" style="flex-basis:100%">taught points not placed: '
                     f'{_e(e["points_error"])}</div>')
     if status == "rejected":
+        again = "" if e.get("diagnosis") else "; measure again"   # a wrong TCP: check it
         body.append('<div class="err-msg rejected" style="flex-basis:100%">REJECTED: '
-                    f'{_e(_reason(e))}; measure again</div>')
+                    f'{_e(_reason(e))}{again}</div>')
     src = (f"measurement <code>{_e(e.get('measurement'))}</code>; controller "
            f"<code>{_e(e.get('controller'))}</code>")
     if e.get("patched"):

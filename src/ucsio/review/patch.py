@@ -49,6 +49,7 @@ from ..geometry.frames import Frame, Number, Pose
 from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
 from ..values import Value
+from .names import find_frame
 
 # Written precision (decimals) and half a step: what "unchanged" means.
 TRANS_DECIMALS = 3
@@ -578,7 +579,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     (``verify(result, parsed=...)``, as ``batch`` does) passes False.
     ``load``: how sibling modules are read for the shared-PERS check
     (``shared_declarations``)."""
-    frame = cf.frame(resolve_name(name, oframe))
+    frame = find_frame(cf, resolve_name(name, oframe))
     where = {"file": frame.file, "line": frame.line}
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
@@ -637,7 +638,7 @@ def patch_tcp(cf: ControllerFile, name: str, tcp, **options) -> PatchResult:
     solve``) into a robot-held tool: its translation only; orientation, mass
     and load stay as written. The same refusals, read-back check and writing
     as a frame patch."""
-    frame = cf.frame(name)
+    frame = find_frame(cf, name)
     if not robot_held_tool(frame):
         raise UcsioError(f"{frame.name}: a solved TCP belongs in a robot-held tool (tooldata "
                          f"with robhold TRUE, KUKA TOOL_DATA); this is {frame.type} relative to "
