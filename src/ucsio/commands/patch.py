@@ -22,7 +22,9 @@ solution for a frame that is not relative to world (a robot-held tool, KUKA
 BASE_TYPE #TCP or a base on an external kinematic, an ABB wobj with robhold
 TRUE, an oframe of a moving or robot-held wobj) or a RAPID PERS that another
 module in the same folder also declares (RAPID shares it; --force overrides
-these two), an archive member, a rejected solution, and a file that changed on
+these two: such an oframe then gets uframe^-1 * world with the user frame the
+file holds, and the warning says so; an oframe whose uframe has no literal
+value is refused even then), an archive member, a rejected solution, and a file that changed on
 disk since it was read. A robot-held tool (ABB tooldata with robhold TRUE, KUKA
 TOOL_DATA) with a solution from `solve --tcp solve` gets the solved TCP's x, y,
 z and nothing else (orientation, mass and load stay); a solution whose TCP was

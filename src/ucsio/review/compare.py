@@ -23,7 +23,8 @@ from ..parsing.controller import ControllerFile, load, parse
 from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
-from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
+from .patch import (_close32, measured_in_parent, object_frame_basis, poses_equal,
+                    reference_problem, resolve_name)
 
 
 
@@ -48,7 +49,9 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
     d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
     why = reference_problem(cf, frame)
     if why:
-        d["warning"] = f"{frame.name}: {why}; the measured frame is in robot world"
+        basis = object_frame_basis(cf, frame)
+        d["warning"] = (f"{frame.name}: {why}; compared as {basis}" if basis else
+                        f"{frame.name}: {why}; the measured frame is in robot world")
     return d
 
 
