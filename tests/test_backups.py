@@ -113,10 +113,12 @@ def test_frames_of_a_folder_are_the_frames_of_its_files(tmp_path):
     whole = json.loads(res.stdout)
     assert [e["file"].endswith("TuneMasterLib.mod") for e in whole["errors"]] == [True]
     from ucsio import load
+    from ucsio.review.unset import as_dict     # the frame's keys and "set"
     singles = []                                    # each file on its own, in process
     for f in sorted((tmp_path / "bk").rglob("*")):
         if f.suffix.lower() in (".mod", ".sys", ".prg", ".modx", ".dat") and f.name != "TuneMasterLib.mod":
-            singles.extend(json.loads(json.dumps(x.as_dict())) for x in load(f).frames)
+            cf = load(f)
+            singles.extend(json.loads(json.dumps(as_dict(x, cf))) for x in cf.frames)
     assert sorted(json.dumps(x, sort_keys=True) for x in whole["frames"]) == \
         sorted(json.dumps(x, sort_keys=True) for x in singles)
     assert not any(f["file"].endswith((".src", ".txt")) for f in whole["frames"])

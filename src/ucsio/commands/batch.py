@@ -229,6 +229,11 @@ def render(result, patching: bool | None = None) -> str:
         out.append("")
         out.append("patch errors (no patched copy written for these):")
         out.extend(f"  {r.entry.name}: {r.patch_error}" for r in refused)
+    warned = [r for r in result.entries if r.warnings]
+    if warned:
+        out.append("")
+        out.append("warnings:")
+        out.extend(f"  {r.entry.name}: {w}" for r in warned for w in r.warnings)
     unplaced = [r for r in result.entries if r.points_error is not None]
     if unplaced:
         out.append("")

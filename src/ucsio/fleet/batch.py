@@ -313,7 +313,8 @@ class EntryResult:
     uncertainty_error: str | None = None  # why --uncertainty gave nothing for this entry
     points_moved: dict | None = None      # points = true: count, max, mean, worst (taught points)
     points_error: str | None = None       # why they could not be placed
-    warnings: list[str] = field(default_factory=list)   # pairing a laser and a robot file
+    warnings: list[str] = field(default_factory=list)   # pairing a laser and a robot file; unset
+    simulated_set: bool | None = None     # False: the simulated frame is unset (review.unset)
 
     @property
     def accepted(self) -> bool:
@@ -385,6 +386,8 @@ class EntryResult:
                   "tolerance": en.tolerance})
         if self.simulated is not None:
             d["simulated"] = self.simulated.as_dict()
+        if self.simulated_set is not None:
+            d["simulated_set"] = self.simulated_set
         if self.delta is not None:
             d["diff"] = {k: self.delta[k] for k in ("dx", "dy", "dz", "da", "db", "dc", "angle",
                                                      "dist", "dt_mean", "group", "pass")}
@@ -563,6 +566,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     import time
 
     from ..review.names import find_frame
+    from ..review.unset import is_set, warning as unset_warning
 
     t0 = time.perf_counter()
     cache = _Cache()
@@ -591,13 +595,17 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                                  line=frame.line)
             r.simulated = frame.pose
             frames[k] = (cf, frame)
+            r.simulated_set = is_set(frame, cf)
+            if not r.simulated_set:     # the diff is then the whole measured pose
+                r.warnings = [unset_warning(frame)]
             stage = "tool"
             tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
             stage = "measurement"
             if en.sources is None:
                 meas = cache.measurement(en.measurement)
             else:
-                meas, r.warnings = cache.paired(en.sources)
+                meas, paired = cache.paired(en.sources)
+                r.warnings = list(paired) + r.warnings    # the cache's list stays as it is
             if en.solve_tcp:                # the joint model: solved on its own, below
                 joint.append(k)
                 read[k] = (None, meas)

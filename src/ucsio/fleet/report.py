@@ -541,6 +541,17 @@ def _actions(entries: list[dict]) -> str:
         kinds.append(f'<div class="kind" data-kind="{_e(status)}"><h3><span class="pill {cls}">'
                      f'{len(items)}</span> {_e(heading)}</h3><p class="todo">{_e(todo)}</p>'
                      f'<ol>{"".join(items)}</ol></div>')
+    unset = [(i, e) for i, e in enumerate(entries)
+             if e.get("simulated_set") is False and e.get("status") != "error"]
+    if unset:
+        total += len(unset)
+        kinds.append('<div class="kind" data-kind="unset"><h3><span class="pill warn">'
+                     f'{len(unset)}</span> Simulated frame unset: the difference is the whole '
+                     'measured pose</h3><p class="todo">check the frame named in the manifest '
+                     '(an unset entry is most often the wrong number); where it is right, the '
+                     'measured frame is new, not a correction of the simulation.</p><ol>'
+                     + "".join(_action_item(i, e, "unset", _unset_words(e), "")
+                               for i, e in unset) + "</ol></div>")
     unplaced = [(i, e) for i, e in enumerate(entries) if e.get("points_error")]
     if unplaced:
         total += len(unplaced)
@@ -556,6 +567,14 @@ def _actions(entries: list[dict]) -> str:
                 'within tolerance and the programs can be used as they are.</p></section>')
     return (f'<section id="actions"><h2>Needs action: {total}</h2>' + "".join(kinds)
             + "</section>")
+
+
+def _unset_words(e: dict) -> str:
+    """The entry's unset-frame warning (batch puts it in ``warnings``)."""
+    for w in e.get("warnings") or []:
+        if isinstance(w, str) and " is unset " in w:
+            return w + "."
+    return f"{e.get('frame_name') or 'the frame'} is unset."
 
 
 def _stations(entries: list[dict]) -> str:
@@ -804,6 +823,8 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
     if e.get("patch_error"):
         body.append('<div class="err-msg patch-error" style="flex-basis:100%">patched copy NOT '
                     f'written: {_e(e["patch_error"])}</div>')
+    for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
+        body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
     if e.get("simulated") or e.get("frame"):
         rows = _pose_rows("simulated", e.get("simulated")) + _pose_rows(
             "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"))

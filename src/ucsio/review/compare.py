@@ -23,6 +23,7 @@ from ..parsing.controller import ControllerFile, load, parse
 from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
+from .unset import is_set, warning as unset_warning
 from .patch import (_close32, measured_in_parent, object_frame_basis, poses_equal,
                     reference_problem, resolve_name)
 
@@ -47,11 +48,17 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
     if frame.label:
         d["label"] = frame.label
     d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
+    warnings = []
     why = reference_problem(cf, frame)
     if why:
         basis = object_frame_basis(cf, frame)
-        d["warning"] = (f"{frame.name}: {why}; compared as {basis}" if basis else
+        warnings.append(f"{frame.name}: {why}; compared as {basis}" if basis else
                         f"{frame.name}: {why}; the measured frame is in robot world")
+    d["set"] = is_set(frame, cf)
+    if not d["set"]:
+        warnings.append(unset_warning(frame))
+    if warnings:
+        d["warning"] = "; ".join(warnings)
     return d
 
 
