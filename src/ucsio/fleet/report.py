@@ -718,6 +718,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
 
     parts.append("<h2>Entries</h2>")
     points = any(isinstance(e.get("points_moved"), dict) for e in entries)
+    solved = any(_dict(e.get("tcp_solved")) for e in entries)    # tcp = "solve" entries
     parts.append('<table id="entries"><tr><th>entry</th><th>station</th><th>status</th>'
                  '<th class="n">points used</th>'
                  '<th class="n">e<small>measurement error, mm</small></th>'
@@ -726,7 +727,9 @@ def render_report(data: dict, title: str = "ucsio batch report",
                  '<th class="n">dy<small>mm</small></th><th class="n">dz<small>mm</small></th>'
                  '<th class="n">angle<small>turned, °</small></th>'
                  + ('<th class="n">taught points<small>moved up to, mm (n)</small></th>'
-                    if points else "") + '</tr>')
+                    if points else "")
+                 + ('<th class="n">TCP solved<small>x, y, z mm ± 95 % doubt</small></th>'
+                    if solved else "") + '</tr>')
     for i, e in enumerate(entries):
         d = _dict(e.get("diff"))
         status = e.get("status")
@@ -749,7 +752,8 @@ def render_report(data: dict, title: str = "ucsio batch report",
             f'<td class="n">{_f(e.get("group"))}</td><td class="n">{_f(d.get("dx"))}</td>'
             f'<td class="n">{_f(d.get("dy"))}</td><td class="n">{_f(d.get("dz"))}</td>'
             f'<td class="n">{_f(d.get("angle"), 4)}</td>'
-            + (f'<td class="n">{_points_cell(pm)}</td>' if points else "") + '</tr>')
+            + (f'<td class="n">{_points_cell(pm)}</td>' if points else "")
+            + (f'<td class="n tcp-solved">{_tcp_cell(e)}</td>' if solved else "") + '</tr>')
     parts.append("</table>")
 
     parts.append("<h2>Details</h2>")
@@ -760,6 +764,57 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append(f'<script type="application/json" id="ucsio-data">{payload}</script>')
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
+
+
+def _tcp_text(t: dict) -> str:
+    return f"{_f(t.get('x'))}, {_f(t.get('y'))}, {_f(t.get('z'))}"
+
+
+def _tool_name(spec: Any) -> str:
+    """'Cell.mod:tReflector' of '/path/to/Cell.mod:tReflector'."""
+    file, _, name = str(spec or "").rpartition(":")
+    return f"{os.path.basename(file)}:{name}" if file else str(spec or "")
+
+
+def _tcp_cell(e: dict) -> str:
+    """An entries-table cell: the solved TCP, its 95 % doubt, where it went."""
+    t = _dict(e.get("tcp_solved"))
+    if not t or e.get("status") == "error":
+        return "\u2013"
+    where = ""
+    if e.get("tool_patched"):
+        where = f" → {_e(_tool_name(e.get('tool')))}"
+    elif e.get("tool_not_patched"):
+        where = " (no tool patched)"
+    return f"{_e(_tcp_text(t))} ± {_f(t.get('at_95'))}{where}"
+
+
+def _tcp_note(e: dict, base: str | None) -> str:
+    """The details' paragraph on a TCP solved with the frame: the TCP, its
+    doubt, the tool the manifest names (its value and how far), and whether
+    the tool was patched, or that none was (no tool named)."""
+    t = _dict(e.get("tcp_solved"))
+    std = _dict(t.get("std"))
+    txt = (f"TCP solved with the frame: {_e(_tcp_text(t))} mm in flange coordinates, within "
+           f"{_f(t.get('at_95'))} mm at 95 % (std {_f(std.get('x'))}, {_f(std.get('y'))}, "
+           f"{_f(std.get('z'))} mm).")
+    tool = e.get("tool")
+    held = _dict(e.get("tool_tcp"))
+    if tool and held:
+        txt += (f" Tool <code>{_e(_tool_name(tool))}</code> holds {_e(_tcp_text(held))} mm, "
+                f"{_f(held.get('distance'))} mm from it")
+        if e.get("tool_patched"):
+            txt += (f"; the solved TCP is written into it in the patched copy "
+                    f'<a class="patched" href="{_e(_href(str(e["tool_patched"]), base))}">'
+                    f'{_e(e["tool_patched"])}</a> (x, y, z only).')
+        elif e.get("patch_error"):
+            txt += "; it was not patched (see the patch error)."
+        else:
+            txt += "; it was not patched."
+    else:
+        txt += (" The manifest names no tool for it, so no tool was patched (tool = "
+                "\"FILE:NAME\" beside tcp = \"solve\" names the one to write it into).")
+    return f'<p class="note tcp-solved" style="flex-basis:100%">{txt}</p>'
 
 
 def _points_cell(pm: dict) -> str:
@@ -866,6 +921,8 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         if e.get("uncertainty_error"):
             info += f"; uncertainty not computed: {e['uncertainty_error']}"
         body.append(f'<p class="note" style="flex-basis:100%">{_e(info)}</p>')
+    if _dict(e.get("tcp_solved")) and status != "error":
+        body.append(_tcp_note(e, base))
     prec = _dict(e.get("precision"))
     if _num(prec.get("at_reach")) is not None:
         body.append(f'<p class="note precision" style="flex-basis:100%">How well the points pin '
