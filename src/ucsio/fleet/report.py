@@ -282,25 +282,45 @@ def residual_axis(values: Sequence[float], threshold: float | None) -> tuple[flo
     return bottom, top
 
 
+NAME_CHARS = 24          # an entry's name under its bar, at most (the tooltip has it all)
+NAME_FONT = 9.0          # the smallest font the names get (svg units, about px)
+
+
+def _short(name: str) -> str:
+    return name if len(name) <= NAME_CHARS else name[:NAME_CHARS].rstrip() + "…"
+
+
 def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
     """One bar per solved entry: e (solid) in front of the largest used
     residual (light); red for a rejected dataset; on a logarithmic axis
-    (``residual_axis``). The threshold's label sits in the right margin,
-    beside the plot, never over the bars."""
-    W, H, left, right, top_pad, bottom_pad = 1100, 260, 64, 120, 14, 44
+    (``residual_axis``). Under each bar its entry's name, turned upright
+    (shortened to NAME_CHARS; where the bars are narrower than a line of
+    NAME_FONT, every k-th bar is named and the axis title says so). The
+    threshold's label sits in the right margin, beside the plot, never over
+    the bars."""
+    W, left, right, top_pad, plot_h = 1100, 64, 120, 14, 202
     n = max(len(rows), 1)
     rows = [dict(r, e=_num(r.get("e")), max=_num(r.get("max"))) for r in rows]
+    pw = W - left - right
+    bw = pw / n
+    font = min(12.0, max(NAME_FONT, bw * 0.9))
+    every = max(1, math.ceil(font / bw))          # names a line apart, never on top of each other
+    names = [_short(str(r.get("name") or "")) for r in rows]
+    longest = max((len(nm) for k, nm in enumerate(names) if k % every == 0), default=0)
+    label_h = 8 + 0.6 * font * longest            # the upright names below the axis
+    bottom_pad = label_h + 30
+    H = top_pad + plot_h + bottom_pad
     vals = [r["max"] for r in rows if r["max"] is not None] + \
            [r["e"] for r in rows if r["e"] is not None]
     lo, hi = residual_axis(vals, threshold)
-    pw, ph = W - left - right, H - top_pad - bottom_pad
+    ph = plot_h
     span = math.log10(hi) - math.log10(lo)
 
     def Y(v):
         v = min(max(v, lo), hi)
         return top_pad + ph * (1 - (math.log10(v) - math.log10(lo)) / span)
 
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H}" role="img" '
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H:.0f}" role="img" '
            f'aria-label="measurement error e per entry">']
     decade = lo
     while decade <= hi * 1.0001:
@@ -315,7 +335,6 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
             out.append(f'<text x="{left - 8}" y="{y + 4:.1f}" text-anchor="end" '
                        f'font-size="{13 if major else 11}" fill="#1d2329">{v:g}</text>')
         decade *= 10
-    bw = pw / n
     base = Y(lo)
     for i, r in enumerate(rows):
         x = left + i * bw
@@ -328,6 +347,11 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
                        f'x="{x + bw * 0.1:.2f}" y="{Y(r["e"]):.1f}" width="{bw * 0.8:.2f}" '
                        f'height="{base - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r.get("name"))}: '
                        f'e {r["e"]:.3f} mm, max {_f(r.get("max"))} mm</title></rect>')
+        if i % every == 0:       # the name, upright, its end at the axis under the bar
+            cx, cy = x + bw / 2 + font * 0.35, base + 6
+            out.append(f'<text class="ename" x="{cx:.1f}" y="{cy:.1f}" text-anchor="end" '
+                       f'font-size="{font:g}" fill="{"#8e1c1c" if color == BAD else "#1d2329"}" '
+                       f'transform="rotate(-90 {cx:.1f} {cy:.1f})">{_e(names[i])}</text>')
     if threshold is not None:
         y = Y(threshold)
         out.append(f'<line class="threshold" x1="{left}" x2="{W - right}" y1="{y:.1f}" '
@@ -335,9 +359,15 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
                    f'<text x="{W - right + 6}" y="{y + 4:.1f}" font-size="13" fill="{BAD}">'
                    f'threshold {threshold:g} mm</text>')
     out.append(f'<line x1="{left}" x2="{W - right}" y1="{base:.1f}" y2="{base:.1f}" stroke="#1d2329"/>')
-    out.append(_axis_titles(left + pw / 2, H - 14, f"entries in manifest order ({len(rows)} solved)",
+    named = "" if every == 1 else f"; every {every}{_ordinal(every)} one named"
+    out.append(_axis_titles(left + pw / 2, H - 10,
+                            f"entries in manifest order ({len(rows)} solved{named})",
                             top_pad + ph / 2, "mm (log scale)"))
     return "".join(out)
+
+
+def _ordinal(k: int) -> str:
+    return "th" if 10 <= k % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(k % 10, "th")
 
 
 def residual_legend(threshold: float | None) -> str:
@@ -946,8 +976,13 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         again = "" if e.get("diagnosis") else "; measure again"   # a wrong TCP: check it
         body.append('<div class="err-msg rejected" style="flex-basis:100%">REJECTED: '
                     f'{_e(_reason(e))}{again}</div>')
-    src = (f"measurement <code>{_e(e.get('measurement'))}</code>; controller "
-           f"<code>{_e(e.get('controller'))}</code>")
+    sources = _dict(e.get("sources"))
+    if sources.get("laser") or sources.get("robot"):   # laser + robot: every file it was read from
+        src = "; ".join(f"{k} <code>{_e(sources[k])}</code>"
+                        for k in ("laser", "robot", "config", "map") if sources.get(k))
+    else:
+        src = f"measurement <code>{_e(e.get('measurement'))}</code>"
+    src += f"; controller <code>{_e(e.get('controller'))}</code>"
     if e.get("patched"):
         src += (f'; patched copy <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
                 f'{_e(e["patched"])}</a>')
