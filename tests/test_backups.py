@@ -113,10 +113,12 @@ def test_frames_of_a_folder_are_the_frames_of_its_files(tmp_path):
     whole = json.loads(res.stdout)
     assert [e["file"].endswith("TuneMasterLib.mod") for e in whole["errors"]] == [True]
     from ucsio import load
+    from ucsio.review.unset import as_dict     # the frame's keys and "set"
     singles = []                                    # each file on its own, in process
     for f in sorted((tmp_path / "bk").rglob("*")):
         if f.suffix.lower() in (".mod", ".sys", ".prg", ".modx", ".dat") and f.name != "TuneMasterLib.mod":
-            singles.extend(json.loads(json.dumps(x.as_dict())) for x in load(f).frames)
+            cf = load(f)
+            singles.extend(json.loads(json.dumps(as_dict(x, cf))) for x in cf.frames)
     assert sorted(json.dumps(x, sort_keys=True) for x in whole["frames"]) == \
         sorted(json.dumps(x, sort_keys=True) for x in singles)
     assert not any(f["file"].endswith((".src", ".txt")) for f in whole["frames"])
@@ -251,7 +253,7 @@ def test_backup_diff_text_reads_in_ten_seconds(two_backups):
     assert "+ RAPID/TASK1/PROGMOD/Fixture.mod: file added (12 frames: " in res.stdout
     assert "- RAPID/TASK1/PROGMOD/wsierrad__Lab5_Robotica__Module1_2_Tarea1.mod: file removed" in res.stdout
     assert "~ KRC/R1/System/$config.dat: 1 frame changed, 0 added, 0 removed" in res.stdout
-    assert "    ~ BASE_DATA[1] (BASE_DATA): value changed" in res.stdout
+    assert '    ~ BASE_DATA[1] "pickBP" (BASE_DATA): value changed' in res.stdout
     assert "lines changed, no frame" in res.stdout
     assert "\033[" not in res.stdout                       # piped: no colour
 
@@ -298,7 +300,8 @@ def test_backup_diff_with_a_changed_unreadable_file_exits_2(two_backups, tmp_pat
 
 def test_diff_of_a_folder_and_a_file_is_a_usage_error(tmp_path):
     res = run("diff", tmp_path, FIXTURES / "abb" / "variants.mod")
-    assert res.returncode == 2 and "both" in res.stderr and res.stderr.count("\n") == 1
+    assert res.returncode == 2 and res.stderr.count("\n") == 1
+    assert f"{tmp_path} is a backup" in res.stderr and "two files or two backups" in res.stderr
 
 
 # -------------------------------------------------------------- start-up

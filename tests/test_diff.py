@@ -213,3 +213,71 @@ def test_two_file_review_shows_what_frame_values_cannot(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "no frame changed" in out and "lines changed beyond the frame values above" in out
     assert "+BASE_DATA[1]={X 0000" in out
+
+
+# ------------------------------------------------------------- messages (issue 18, point 7)
+
+def test_diff_of_a_folder_and_a_missing_path_names_the_missing_one(tmp_path, capsys):
+    folder = tmp_path / "old"
+    folder.mkdir()
+    shutil.copy(CELL, folder / "cell.mod")
+    missing = tmp_path / "missing"
+    for args in ([folder, missing], [missing, folder], [CELL, missing]):
+        assert main(["diff", *map(str, args)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1, err
+        assert f"{missing}: does not exist" in err and "both" not in err, err
+
+
+KUKA_CELL = FIXTURES / "kuka" / "cell_config.dat"
+
+
+@pytest.mark.parametrize("path,name,words", [
+    (KUKA_CELL, "TOOL_DATA[5]", "outside 1…4"),
+    (KUKA_CELL, "tool_data[0]", "outside 1…4"),
+    (KUKA_CELL, "BASE_DATA[17]", "outside 1…4"),
+    (FIXTURES / "abb" / "variants.mod", "tools{5}", "outside 1…2"),
+])
+def test_an_index_outside_the_table_is_named_not_a_nearest_name(tmp_path, capsys, path, name,
+                                                                  words):
+    sol = write_solution(tmp_path, MEASURED)
+    for args in (["diff", str(path), "--frame", name, "--measured", str(sol)],
+                 ["patch", str(path), "--frame", name, "--measured", str(sol)],
+                 ["patch", str(path), "--frame", name, "--set", "1,2,3,0,0,0"]):
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1, err
+        assert words in err and "did you mean" not in err, err
+    # a name that is merely mistyped still gets the nearest one
+    assert main(["patch", str(path), "--frame", name.replace("[", "X[").replace("{", "X{"),
+                 "--set", "1,2,3,0,0,0"]) == 2
+    assert "did you mean" in capsys.readouterr().err
+
+
+def test_corpus_tool_table_of_sixteen(tmp_path, capsys):
+    from conftest import corpus_file
+    cfg = corpus_file("kuka", "Zinkerreka__KRC__R1__System")
+    sol = write_solution(tmp_path, MEASURED)
+    assert main(["diff", str(cfg), "--frame", "TOOL_DATA[17]", "--measured", str(sol)]) == 2
+    err = capsys.readouterr().err
+    assert "TOOL_DATA[17]" in err and "outside 1…16" in err and "TOOL_DATA[7]" not in err
+
+
+def test_two_file_and_git_diffs_show_a_kuka_label(tmp_path, capsys):
+    new = edited(tmp_path, "kuka", "Z 1156.772,A 90.0000,B -25.0000,C 0.0}",
+                 "Z 1168.990,A 90.5290,B -24.4760,C -0.3130}", REFS)
+    assert main(["diff", str(REFS), str(new)]) == 0
+    out = capsys.readouterr().out
+    assert '~ BASE_DATA[7] "spec_base" (BASE_DATA): value changed' in out
+    assert main(["diff", "$config.dat", str(REFS), "0" * 40, "100644", str(new), "1" * 40,
+                 "100644"]) == 0
+    assert '~ BASE_DATA[7] "spec_base" (BASE_DATA)' in capsys.readouterr().out
+    # added and removed frames too; an ABB frame has no label and keeps its type alone
+    gone = edited(tmp_path, "gone", "BASE_DATA[7]={X 6130.000,Y 2444.711,Z 1156.772,A 90.0000,"
+                  "B -25.0000,C 0.0}\n", "", REFS)
+    assert main(["diff", str(REFS), str(gone)]) == 0
+    out = capsys.readouterr().out
+    assert '- BASE_DATA[7] "spec_base" (BASE_DATA) removed' in out
+    moved = edited(tmp_path, "abb", "[[6130,2444.711", "[[6131,2444.711")
+    assert main(["diff", str(CELL), str(moved)]) == 0
+    assert "~ wobjSpec (wobjdata): value changed" in capsys.readouterr().out

@@ -56,7 +56,7 @@ def test_external_diff_driver(repo):
     assert "~ wobjSpec (wobjdata): value changed" in out
     assert "dt_mean 5.892 mm (group 1)" in out
     assert "ucsio diff a/R02/$config.dat b/R02/$config.dat" in out
-    assert "~ BASE_DATA[1] (BASE_DATA): value changed" in out and "dz +5.000" in out
+    assert '~ BASE_DATA[1] "table" (BASE_DATA): value changed' in out and "dz +5.000" in out
     # a new backup file: git passes /dev/null as the old side
     shutil.copy(repo / "R01" / "cell.mod", repo / "R01" / "cell_copy.mod")
     git(repo, "add", "R01/cell_copy.mod")

@@ -9,6 +9,7 @@ import shutil
 import stat
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from conftest import FIXTURES, corpus_files
@@ -564,3 +565,58 @@ def test_patch_diff_from_the_changed_window_equals_the_whole_file_diff(lines, eo
         new = new.replace("\n", "\r")       # a bare-CR file stays one
     doc = Document(text.encode(), "m.mod")
     assert unified_diff(doc, new.encode(), "m.mod") == _whole_file_diff(doc, new.encode(), "m.mod")
+
+
+@pytest.mark.parametrize("head,why", [('FALSE,FALSE,"STN_1"', "moves"),
+                                      ('TRUE,TRUE,""', "wrist")])
+def test_forced_object_frame_under_a_moving_or_held_user_frame(tmp_path, capsys, head, why):
+    """Issue 18, point 5: --force on the object frame of a moving (ufprog
+    FALSE) or robot-held wobj wrote the world pose unchanged; the README says
+    an object frame gets uframe^-1 * world. It does, with the user frame the
+    file holds, checked against scipy, and the warning says so."""
+    from scipy.spatial.transform import Rotation
+
+    u_rot = Rotation.from_euler("ZYX", [30.0, 10.0, -20.0], degrees=True)
+    x, y, z, w = u_rot.as_quat()
+    q = [round(float(v), 6) for v in (w, x, y, z)]
+    u_t = np.array([400.0, -250.0, 120.0])
+    mod = tmp_path / "cell.mod"
+    mod.write_text("MODULE Cell\n  TASK PERS wobjdata wobjX:=[" + head + ",[[400,-250,120],["
+                   + ",".join(repr(v) for v in q) + "]],[[0,0,0],[1,0,0,0]]];\nENDMODULE\n")
+    world = Pose.from_abc(1200.0, 300.0, 650.0, 75.0, -5.0, 12.0)
+    sol = solution(tmp_path, world)
+    args = ["patch", str(mod), "--frame", "wobjX.oframe", "--measured", str(sol)]
+    assert main(args) == 2
+    assert "--force" in capsys.readouterr().err
+    out = tmp_path / "out.mod"
+    assert main([*args, "--force", "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "uframe⁻¹ · world" in err and why in err and "--force" in err, err
+    # scipy: oframe = uframe^-1 * world, with the user frame as the file holds it
+    u = Rotation.from_quat([q[1], q[2], q[3], q[0]])
+    w_rot = Rotation.from_quat([world.q[1], world.q[2], world.q[3], world.q[0]])
+    want_t = u.inv().apply(np.array(world.t) - u_t)
+    want_r = u.inv() * w_rot
+    back = load(out).frame("wobjX.oframe").pose
+    assert np.allclose(back.t, want_t, atol=TRANS_TOL), (back.t, want_t)
+    got_r = Rotation.from_quat([back.q[1], back.q[2], back.q[3], back.q[0]])
+    assert np.degrees((want_r.inv() * got_r).magnitude()) <= ANGLE_TOL
+    # and diff compares it there too, with the same warning
+    from ucsio import api
+    d = api.diff_frame(mod, "wobjX.oframe", world)
+    assert [d["measured"][k] for k in "xyz"] == pytest.approx(list(want_t), abs=1e-6)
+    assert "uframe⁻¹ · world" in d["warning"] and why in d["warning"]
+
+
+def test_object_frame_under_a_user_frame_without_value_is_refused_even_forced(tmp_path, capsys):
+    mod = tmp_path / "cell.mod"
+    mod.write_text('MODULE Cell\n  TASK PERS wobjdata wobjZ:=[FALSE,FALSE,"STN_1",'
+                   '[[0,0,0],[1,0,0,"x"]],[[1,2,3],[1,0,0,0]]];\nENDMODULE\n')
+    sol = solution(tmp_path, Pose.from_abc(1200.0, 300.0, 650.0, 75.0, -5.0, 12.0))
+    before = mod.read_bytes()
+    for force in ([], ["--force"]):
+        assert main(["patch", str(mod), "--frame", "wobjZ.oframe", "--measured", str(sol),
+                     "--in-place", *force]) == 2
+        err = capsys.readouterr().err
+        assert "no literal value" in err and err.count("\n") == 1
+    assert mod.read_bytes() == before

@@ -277,3 +277,60 @@ def test_nothing_needs_action_and_points_moved():
     over = dict(entry, status="over tolerance", dt_mean=150.0, group=5, **{"pass": False})
     html_text = render_report(_one(over, errors=0))
     assert "its taught points move by up to 17.2 mm (XP7)" in html_text
+
+
+# ---------------------------------------------------------------- issue 18, point 9
+
+def test_measurement_error_bars_carry_their_entry_names(report):
+    path, data = report
+    labels: list[str] = []
+
+    class Labels(HTMLParser):
+        def __init__(self):
+            super().__init__()
+            self.on = False
+
+        def handle_starttag(self, tag, attrs):
+            self.on = tag == "text" and dict(attrs).get("class") == "ename"
+
+        def handle_endtag(self, tag):
+            self.on = False
+
+        def handle_data(self, d):
+            if self.on:
+                labels.append(d)
+
+    text = path.read_text(encoding="utf-8")
+    chart = text.split('id="residuals"', 1)[1].split("</figure>", 1)[0]
+    Labels().feed(chart)
+    solved = [e["name"] for e in data["entries"] if e["e"] is not None]
+    assert labels == solved                     # one per bar, in the bars' order
+
+
+def test_long_names_are_shortened_and_crowds_thinned():
+    from ucsio.fleet.report import residual_bars_svg
+    rows = [{"name": "Station 12 / robot 3 / the big welding fixture", "e": 0.05, "max": 0.1}]
+    svg = residual_bars_svg(rows, 1.5)
+    assert ">Station 12 / robot 3 / t…</text>" in svg
+    assert "Station 12 / robot 3 / the big welding fixture: e 0.050" in svg   # the tooltip keeps all
+    many = [{"name": f"E{i}", "e": 0.05, "max": 0.1} for i in range(400)]
+    svg = residual_bars_svg(many, 1.5)
+    shown = re.findall(r'class="ename"[^>]*>([^<]*)<', svg)
+    assert 0 < len(shown) < 400 and shown[0] == "E0"          # every k-th, never on top of each other
+    assert "every" in svg                                      # and the axis says so
+
+
+def test_laser_and_robot_files_are_both_listed():
+    from ucsio.fleet.report import render_report
+    entry = {"name": "R03 jig", "status": "pass", "accepted": True, "e": 0.05, "dt_mean": 1.0,
+             "group": 1, "pass": True, "n_points": 6, "n_used": 6, "rms": 0.05, "max": 0.08,
+             "threshold": 1.5, "tolerance": 100.0, "points": [],
+             "measurement": "R03/jig_points.txt", "controller": "R03/$config.dat",
+             "sources": {"laser": "R03/jig_points.txt", "robot": "R03/MEASURE.dat",
+                         "config": "R03/$config.dat", "map": "R03/names.csv"}}
+    html = render_report(_one(entry, passed=1, errors=0, success_rate=1.0))
+    shown = html.split('<script type="application/json"', 1)[0]
+    assert "laser <code>R03/jig_points.txt</code>" in shown
+    assert "robot <code>R03/MEASURE.dat</code>" in shown
+    assert "map <code>R03/names.csv</code>" in shown
+    assert "measurement <code>R03/jig_points.txt</code>" not in shown

@@ -113,7 +113,8 @@ def test_every_chart_has_a_visible_legend_and_readable_axes(page):
         const svg = f.querySelector('svg');
         const texts = [...svg.querySelectorAll('text')].map(t => t.getBoundingClientRect().height)
                                                         .filter(h => h > 0);
-        const rot = [...svg.querySelectorAll('text[transform]')].map(t => t.textContent);
+        const rot = [...svg.querySelectorAll('text[transform]:not(.ename)')]   // not the names
+                    .map(t => t.textContent);
         return {id: f.id, legend: lg ? lg.getBoundingClientRect().height : 0,
                 items: lg ? lg.querySelectorAll('.item').length : 0,
                 legendInside: lg ? (lg.getBoundingClientRect().bottom
@@ -188,3 +189,27 @@ def test_screenshot_and_layout_match_the_stored_structure(page, tmp_path):
         # heights and positions vary with the fonts a machine has: by share
         assert abs(g["height"] - w["height"]) <= 0.25 * w["height"] + 24, sel
         assert abs(g["y"] - w["y"]) <= 0.15 * page_height + 24, sel
+
+
+def test_measurement_error_bars_carry_readable_names(page):
+    """Issue 18, point 9: each bar of the measurement-error chart has its
+    entry's name under it, as large as the chart's other small text, within
+    the chart, and the names stand apart (a name's ink does not run into
+    the next one's)."""
+    got = page.evaluate("""(() => {
+        const fig = document.getElementById('residuals'), svg = fig.querySelector('svg');
+        const scale = svg.getBoundingClientRect().width / svg.viewBox.baseVal.width;
+        const names = [...fig.querySelectorAll('text.ename')];
+        const boxes = names.map(t => t.getBoundingClientRect());
+        const centres = boxes.map(b => (b.left + b.right) / 2);
+        const gaps = centres.slice(1).map((c, i) => c - centres[i]);
+        const plot = svg.getBoundingClientRect();
+        return {names: names.map(t => t.textContent),
+                bars: [...fig.querySelectorAll('rect.ebar')].map(b => b.dataset.name),
+                font: Math.min(...names.map(t => parseFloat(t.getAttribute('font-size')))) * scale,
+                minGap: Math.min(...gaps),
+                inside: boxes.every(b => b.bottom <= plot.bottom + 0.5 && b.top >= plot.top),
+                upright: boxes.every(b => b.height > b.width)}; })()""")
+    assert got["names"] == got["bars"] and len(got["names"]) >= 90
+    assert got["font"] >= 9 and got["inside"] and got["upright"]
+    assert got["minGap"] >= 0.95 * got["font"]          # a line apart: readable side by side

@@ -356,7 +356,7 @@ def test_batch_entry_with_laser_robot_and_tcp_solve(tmp_path, capsys):
         '[[entry]]\nname = "wrong"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
         'frame = "wFix"\ntcp = [15.0, -30.25, 185.0]\n')
     (wrong,) = run_batch(read_manifest(tmp_path / "wrong.toml")).entries
-    assert not wrong.accepted and "--tcp solve" in wrong.reason
+    assert not wrong.accepted and 'tcp = "solve"' in wrong.reason   # the manifest's words
     assert half.error and "laser and robot" in half.error
     assert main(["solve", str(csv), "--tcp", "solve"]) == 0
 
@@ -368,3 +368,146 @@ def test_api_solve_with_tcp_solve(tmp_path):
     sol = api.solve(csv_of(meas, tmp_path / "m.csv"), tcp="solve")
     assert sol.accepted and sol.tcp_solved["solved"] is True
     assert np.linalg.norm(np.array(sol.tcp) - TCP) < 0.5
+
+
+def test_a_wrong_tcp_is_not_told_to_measure_again(tmp_path, capsys):
+    """Issue 18, point 7: the wrong-TCP diagnosis says to check the TCP; the
+    batch table, its report and a patch of the rejected solution must not
+    then end with "measure again", which contradicts it."""
+    meas, _, _ = cell(4, 30)
+    csv = csv_of(meas, tmp_path / "m.csv")
+    (tmp_path / "Cell.mod").write_text(ABB_TOOLS)
+    (tmp_path / "wrong.toml").write_text(
+        '[[entry]]\nname = "wrong"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
+        'frame = "wFix"\ntcp = [15.0, -30.25, 185.0]\n')
+    report = tmp_path / "report.html"
+    assert main(["batch", str(tmp_path / "wrong.toml"), "--report", str(report)]) == 1
+    out = capsys.readouterr().out
+    assert "wrong TCP" in out and 'tcp = "solve"' in out and "measure again" not in out
+    html = report.read_text()
+    assert "wrong TCP" in html and "measure again" not in html
+    assert main(["batch", str(tmp_path / "wrong.toml"), "--json"]) == 1
+    (entry,) = json.loads(capsys.readouterr().out)["entries"]
+    assert entry["diagnosis"]["tcp"] == pytest.approx(list(TCP), abs=0.5)
+    # the rejected solution of `solve`: patch and diff refuse it without "measure again"
+    sol = tmp_path / "wrong.json"
+    assert main(["solve", str(csv), "--tcp", "15,-30.25,185", "-o", str(sol)]) == 1
+    capsys.readouterr()
+    for cmd in ("patch", "diff"):
+        assert main([cmd, str(tmp_path / "Cell.mod"), "--frame", "wFix", "--measured",
+                     str(sol)]) == 1
+        err = capsys.readouterr().err
+        assert "wrong TCP" in err and "measure again" not in err, err
+    # a dataset rejected for its points is still told to measure again
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"accepted": False, "reason": "too few points",
+                               "frame": {"x": 0, "y": 0, "z": 0, "a": 0, "b": 0, "c": 0}}))
+    assert main(["patch", str(tmp_path / "Cell.mod"), "--frame", "wFix", "--measured",
+                 str(bad)]) == 1
+    assert "measure again" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ batch: the solved TCP
+
+def _solve_station(tmp_path, entries: str, defaults: str = "") -> "Path":
+    meas, _, _ = cell(4, 30)
+    csv_of(meas, tmp_path / "m.csv")
+    (tmp_path / "Cell.mod").write_text(ABB_TOOLS)
+    (tmp_path / "Other.mod").write_text(    # its own data: a PERS shared with Cell.mod is refused
+        ABB_TOOLS.replace("MODULE Tools", "MODULE Other").replace("wFix", "wOther")
+        .replace("tReflector", "tOther").replace("tGun", "tGun2"))
+    m = tmp_path / "station.toml"
+    m.write_text('[defaults]\nmeasurement = "m.csv"\nframe = "wFix"\ntolerance = 5000.0\n'
+                 + defaults + entries)
+    return m
+
+
+def _shown(html: str) -> str:
+    return html.split('<script type="application/json"', 1)[0]
+
+
+def test_batch_shows_the_solved_tcp_and_patches_it_into_the_named_tool(tmp_path, capsys):
+    """Issue 18, point 6: with tcp = "solve" the solved TCP (and its 95 %
+    doubt) is in the table and the report, not only the JSON; --patch-dir
+    writes it into the entry's tool (tool = "FILE:NAME" beside tcp = "solve")
+    as `patch` does, and says where no tool was named."""
+    from ucsio.parsing.controller import load
+
+    m = _solve_station(tmp_path, '[[entry]]\nname = "into tool"\ncontroller = "Cell.mod"\n'
+                                 'tcp = "solve"\ntool = "Cell.mod:tReflector"\n'
+                                 '[[entry]]\nname = "no tool"\ncontroller = "Other.mod"\n'
+                                 'frame = "wOther"\ntcp = "solve"\n')
+    report, patched = tmp_path / "report.html", tmp_path / "patched"
+    assert main(["batch", str(m), "--patch-dir", str(patched), "--report", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert main(["batch", str(m), "--json", "--patch-dir", str(tmp_path / "again")]) == 0
+    into, none = json.loads(capsys.readouterr().out)["entries"]
+    assert into["tool_patched"] == str(tmp_path / "again" / "Cell.mod")
+    t = into["tcp_solved"]
+    assert np.linalg.norm(np.array([t["x"], t["y"], t["z"]]) - TCP) < 0.5
+    # the table: the TCP and its 95 % doubt, and where it went
+    assert "tcp (95 %)" in out
+    assert f"{t['x']:.3f}, {t['y']:.3f}, {t['z']:.3f} ±{t['at_95']:.3f}" in out
+    assert "solved TCPs:" in out
+    assert "into tool: written into Cell.mod:tReflector" in out.replace(str(tmp_path) + "/", "")
+    assert "no tool: not written into any tool" in out and 'tcp = "solve"' in out
+    # the tool in the patched copy: the solved x, y, z and nothing else of it
+    before, after = load(tmp_path / "Cell.mod"), load(patched / "Cell.mod")
+    tool = after.frame("tReflector")
+    assert tool.pose.t == pytest.approx((t["x"], t["y"], t["z"]), abs=5e-4)
+    assert tool.pose.q == before.frame("tReflector").pose.q
+    assert tool.info["load"] == before.frame("tReflector").info["load"]
+    assert not after.frame("wFix").pose.t == pytest.approx(before.frame("wFix").pose.t)
+    assert load(patched / "Other.mod").frame("tOther").pose.t == \
+        load(tmp_path / "Other.mod").frame("tOther").pose.t
+    # the report shows the TCP, its doubt, the tool written and the tool not patched
+    html = _shown(report.read_text())
+    assert f"{t['x']:.3f}, {t['y']:.3f}, {t['z']:.3f}" in html and "95 %" in html
+    assert "tReflector" in html and "no tool was patched" in html
+    # JSON: where it went
+    assert into["tool"].endswith("Cell.mod:tReflector")
+    held = into["tool_tcp"]                  # the tool's TCP as the file holds it, and how far
+    assert (held["x"], held["y"], held["z"]) == pytest.approx((10.2, -29.8, 179.1))
+    assert held["distance"] == pytest.approx(
+        float(np.linalg.norm(np.array([t["x"], t["y"], t["z"]]) - [10.2, -29.8, 179.1])))
+    assert "tool_not_patched" in none and none.get("tool") is None
+
+
+def test_manifest_tool_beside_tcp(tmp_path, capsys):
+    m = _solve_station(tmp_path,
+                       '[[entry]]\nname = "given and tool"\ncontroller = "Cell.mod"\n'
+                       'tcp = [1.0, 2.0, 3.0]\ntool = "Cell.mod:tReflector"\n'
+                       '[[entry]]\nname = "not a tool"\ncontroller = "Cell.mod"\n'
+                       'tcp = "solve"\ntool = "Cell.mod:wFix"\n'
+                       '[[entry]]\nname = "no such tool"\ncontroller = "Cell.mod"\n'
+                       'tcp = "solve"\ntool = "Cell.mod:tReflectr"\n')
+    assert main(["batch", str(m), "--json"]) == 1
+    given, wobj, typo = json.loads(capsys.readouterr().out)["entries"]
+    assert given["stage"] == "manifest" and "either tcp or tool" in given["error"]
+    assert 'tcp = "solve"' in given["error"]
+    assert wobj["stage"] == "tool" and "robot-held tool" in wobj["error"]
+    assert typo["stage"] == "tool" and "did you mean 'tReflector'" in typo["error"]
+    # in [defaults] too: a given TCP and a tool is a bad manifest; solve and a tool is not
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[defaults]\ntcp = [1.0, 2.0, 3.0]\ntool = "Cell.mod:tReflector"\n'
+                   '[[entry]]\nname = "x"\nmeasurement = "m.csv"\ncontroller = "Cell.mod"\n'
+                   'frame = "wFix"\n')
+    assert main(["batch", str(bad)]) == 2
+    assert "either tcp or tool" in capsys.readouterr().err
+    good = _solve_station(tmp_path, '[[entry]]\nname = "x"\ncontroller = "Cell.mod"\n',
+                          'tcp = "solve"\ntool = "Cell.mod:tReflector"\n')
+    assert main(["batch", str(good), "--json"]) == 0
+    (x,) = json.loads(capsys.readouterr().out)["entries"]
+    assert x["tcp_solved"]["solved"] is True and x["tool"].endswith("Cell.mod:tReflector")
+
+
+def test_two_entries_solving_one_tool_patch_neither(tmp_path, capsys):
+    m = _solve_station(tmp_path, '[[entry]]\nname = "a"\ncontroller = "Cell.mod"\n'
+                                 'tcp = "solve"\ntool = "Cell.mod:tReflector"\n'
+                                 '[[entry]]\nname = "b"\ncontroller = "Other.mod"\n'
+                                 'frame = "wOther"\ntcp = "solve"\ntool = "Cell.mod:tReflector"\n')
+    patched = tmp_path / "patched"
+    assert main(["batch", str(m), "--patch-dir", str(patched), "--json"]) == 1
+    a, b = json.loads(capsys.readouterr().out)["entries"]
+    assert "both" in a["patch_error"] and "tReflector" in a["patch_error"]
+    assert b["patch_error"] and not (patched / "Cell.mod").exists()

@@ -47,7 +47,8 @@ def frames(path: PathLike | ControllerFile) -> list[Frame]:
 def frame(path: PathLike | ControllerFile, name: str) -> Frame:
     """One frame by name (case-insensitive; KUKA labels too); ambiguous or
     unknown names raise UcsioError."""
-    return _cell(path).frame(name)
+    from .review.names import find_frame
+    return find_frame(_cell(path), name)
 
 
 def solve(csv: PathLike, tcp, **options):
@@ -79,6 +80,8 @@ def as_pose(solution: Any) -> Pose:
         return solution
     if hasattr(solution, "pose") and isinstance(solution.pose, Pose):
         if getattr(solution, "accepted", True) is False:
+            if getattr(solution, "diagnosis", None):
+                raise UcsioError(f"this solution's dataset was rejected: {solution.reason}")
             raise UcsioError("this solution's dataset was rejected: measure again")
         return solution.pose
     if isinstance(solution, (str, os.PathLike)):

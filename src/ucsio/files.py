@@ -150,20 +150,56 @@ def atomic_write_text(path: str | os.PathLike, text: str) -> None:
 
 
 def read_bytes(path: str | os.PathLike, what: str = "file") -> bytes:
-    """The bytes of ``path``; a missing file, a folder or an unreadable file
-    is one UcsioError naming it (exit 2). ``-`` is standard input (once per
-    run: a second ``-`` would read nothing)."""
+    """The bytes of ``path``; a missing file, a folder, anything that is not
+    a regular file (after following links: a named pipe, which would block
+    until something writes to it; a device such as /dev/zero, which never
+    ends; a socket) or an unreadable file is one UcsioError naming it (exit
+    2), and nothing is waited for. ``-`` is standard input (once per run: a
+    second ``-`` would read nothing)."""
     if os.fspath(path) == "-":
         return _stdin_bytes(what)
+    name = os.fspath(path)
     try:
-        with open(path, "rb") as fh:
-            return fh.read()
+        _regular_file(os.stat(name), name, what)
+        # O_NONBLOCK: should a pipe take the file's place after the check,
+        # opening it still returns at once, and fstat below refuses it
+        fd = os.open(name, os.O_RDONLY | getattr(os, "O_BINARY", 0)
+                     | getattr(os, "O_NONBLOCK", 0))
     except FileNotFoundError:
-        raise UcsioError(f"no such file (the {what})", file=os.fspath(path)) from None
+        raise UcsioError(f"no such file (the {what})", file=name) from None
     except IsADirectoryError:
-        raise UcsioError(f"is a directory, not a {what}", file=os.fspath(path)) from None
+        raise UcsioError(f"is a directory, not a {what}", file=name) from None
     except OSError as exc:
-        raise UcsioError(f"cannot read {what}: {exc.strerror or exc}", file=os.fspath(path)) from None
+        raise UcsioError(f"cannot read {what}: {exc.strerror or exc}", file=name) from None
+    try:
+        _regular_file(os.fstat(fd), name, what)
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        with os.fdopen(fd, "rb") as fh:
+            fd = -1
+            return fh.read()
+    except OSError as exc:
+        raise UcsioError(f"cannot read {what}: {exc.strerror or exc}", file=name) from None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+
+
+def _regular_file(st: os.stat_result, name: str, what: str) -> None:
+    """Refuse what is not a regular file, saying what it is."""
+    import stat
+
+    mode = st.st_mode
+    if stat.S_ISREG(mode):
+        return
+    if stat.S_ISDIR(mode):
+        raise UcsioError(f"is a directory, not a {what}", file=name)
+    kind = ("a named pipe (FIFO)" if stat.S_ISFIFO(mode) else
+            "a character device" if stat.S_ISCHR(mode) else
+            "a block device" if stat.S_ISBLK(mode) else
+            "a socket" if stat.S_ISSOCK(mode) else "a special file")
+    raise UcsioError(f"not a regular file ({kind}), so not read as the {what}: give a file "
+                     "(or - for standard input)", file=name)
 
 
 _stdin_read = False

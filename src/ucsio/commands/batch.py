@@ -91,9 +91,10 @@ def _run(args) -> int:
     if args.patch_dir is not None:
         pd = os.path.abspath(args.patch_dir)
         for e in manifest.entries:
-            if e.controller is not None and os.path.dirname(os.path.abspath(e.controller)) == pd:
-                raise UcsioError(f"--patch-dir {args.patch_dir} holds the original controller "
-                                 f"file {e.controller}; choose another folder")
+            for original in (e.controller, e.tcp_tool and e.tcp_tool.rpartition(":")[0]):
+                if original and os.path.dirname(os.path.abspath(original)) == pd:
+                    raise UcsioError(f"--patch-dir {args.patch_dir} holds the original "
+                                     f"controller file {original}; choose another folder")
 
     bar = _Bar(sys.stderr) if (sys.stderr.isatty() and not args.no_progress) else None
     try:
@@ -121,7 +122,8 @@ def _run(args) -> int:
         if path:
             print(f"wrote {path} (--{opt})", file=sys.stderr)
     if args.patch_dir is not None:
-        copies = sorted({r.patched for r in result.entries if r.patched is not None})
+        copies = sorted({p for r in result.entries for p in (r.patched, r.tool_patched)
+                         if p is not None})
         if copies:
             print(f"wrote {len(copies)} patched cop{'ies' if len(copies) != 1 else 'y'} "
                   f"under {args.patch_dir}:", file=sys.stderr)
@@ -176,6 +178,39 @@ def _paint_status(text: str, names: list, statuses: list) -> str:
     return "\n".join(lines)
 
 
+def _solved_tcp(r) -> str:
+    """The TCP solved with the frame and its 95 % doubt (mm), or '-'."""
+    t = getattr(r.solution, "tcp_solved", None) if r.error is None else None
+    if not t:
+        return "-"
+    return f"{t['x']:.3f}, {t['y']:.3f}, {t['z']:.3f} ±{t['at_95']:.3f}"
+
+
+def _tool_line(r, patching: bool) -> str | None:
+    """Where an entry's solved TCP went: the tool it names, written or not."""
+    if r.error is not None or not getattr(r.solution, "tcp_solved", None):
+        return None
+    name, tool = r.entry.name, r.entry.tcp_tool
+    held = holds = ""
+    if r.tool_tcp is not None:
+        d = r.tool_tcp_dict()
+        values = (f"{d['x']:.3f}, {d['y']:.3f}, {d['z']:.3f} mm, {d['distance']:.3f} mm from the "
+                  "solved TCP")
+        held, holds = f"the tool held {values}", f"{tool} holds {values}"
+    if tool is None:
+        if r.tool_not_patched:
+            return f"{name}: {r.tool_not_patched}"
+        return (f"{name}: names no tool to write it into (tool = \"FILE:NAME\" beside "
+                "tcp = \"solve\")")
+    if r.tool_patched is not None:
+        return f"{name}: written into {tool} (copy {r.tool_patched}); {held}"
+    if patching and r.patch_error is not None:
+        return f"{name}: not written into {tool} (patch errors below); {held}"
+    if patching:
+        return f"{name}: not written into {tool}: the entry did not pass; {held}"
+    return f"{name}: {holds}; --patch-dir writes the solved TCP there"
+
+
 def render(result, patching: bool | None = None) -> str:
     """The text table, the errors and patch errors, groups and summary lines.
     ``patching``: show the patch column and counts (default: when any entry
@@ -186,6 +221,7 @@ def render(result, patching: bool | None = None) -> str:
         patching = any(r.patched is not None or r.patch_error is not None for r in result.entries)
     # points = true in the manifest: the taught point that moves most, per entry
     points = any(r.entry.points for r in result.entries)
+    solved = any(r.entry.solve_tcp for r in result.entries)   # tcp = "solve": the TCP found
     rows = []
     for r in result.entries:
         d = r.delta or {}
@@ -197,6 +233,8 @@ def render(result, patching: bool | None = None) -> str:
             pm = r.points_moved or {}
             row.append(f"{fmt(pm.get('max'))} ({pm['count']})" if pm.get("count") else
                        "none" if pm else "-")
+        if solved:
+            row.append(_solved_tcp(r))
         if patching:
             row.append("REFUSED" if r.patch_error is not None else
                        "written" if r.patched is not None else "-")
@@ -204,11 +242,26 @@ def render(result, patching: bool | None = None) -> str:
     headers = ["entry", "status", "used", "e", "dt_mean", "group", "dx", "dy", "dz", "angle"]
     if points:
         headers.append("points moved max (n)")
+    if solved:
+        headers.append("tcp (95 %)")
     if patching:
         headers.append("patch")
-    out = [_paint_status(table(headers, rows, right={2, 3, 4, 5, 6, 7, 8, 9, 10} if points else
-                               {2, 3, 4, 5, 6, 7, 8, 9}), [r[0] for r in rows], [r[1] for r in rows])]
+    right = {2, 3, 4, 5, 6, 7, 8, 9} | ({10} if points else set())
+    out = [_paint_status(table(headers, rows, right=right), [r[0] for r in rows],
+                         [r[1] for r in rows])]
+    tools = [line for r in result.entries if r.entry.solve_tcp
+             for line in [_tool_line(r, patching)] if line]
+    if tools:
+        out.append("")
+        out.append("solved TCPs:")
+        out.extend(f"  {line}" for line in tools)
     rejected = [r for r in result.entries if r.status == "rejected"]
+    wrong_tcp = [r for r in rejected if getattr(r.solution, "diagnosis", None)]
+    if wrong_tcp:       # the points are fine: the TCP is not (no "measure again")
+        out.append("")
+        out.append("rejected, a wrong TCP (check the TCP):")
+        out.extend(f"  {r.entry.name}: {r.reason}" for r in wrong_tcp)
+    rejected = [r for r in rejected if r not in wrong_tcp]
     if rejected:
         out.append("")
         out.append("rejected (measure again):")
@@ -223,6 +276,11 @@ def render(result, patching: bool | None = None) -> str:
         out.append("")
         out.append("patch errors (no patched copy written for these):")
         out.extend(f"  {r.entry.name}: {r.patch_error}" for r in refused)
+    warned = [r for r in result.entries if r.warnings]
+    if warned:
+        out.append("")
+        out.append("warnings:")
+        out.extend(f"  {r.entry.name}: {w}" for r in warned for w in r.warnings)
     unplaced = [r for r in result.entries if r.points_error is not None]
     if unplaced:
         out.append("")

@@ -26,6 +26,7 @@ Git setup for a folder of controller backups:
   echo '*.mod diff=ucsio' >> .gitattributes; likewise *.sys *.dat ..."""
 from __future__ import annotations
 
+import os
 import sys
 
 from ..output import emit_json, fmt, table
@@ -77,12 +78,17 @@ def run(args) -> int:
     if len(files) != 2:
         raise UsageError("ucsio diff: expected OLD NEW, FILE --frame NAME --measured "
                          "SOLUTION.json, or --textconv FILE (see ucsio diff --help)")
-    from ..parsing.backup import is_many
+    from ..parsing.backup import is_many, is_member
+    for f in files:     # a wrong path first: it says more than "both files or both backups"
+        if not os.path.lexists(f) and not is_member(f):
+            from ..errors import UcsioError
+            raise UcsioError("does not exist (no such file or folder)", file=f)
     many = [is_many(f) for f in files]
     if any(many):
         if not all(many):
-            raise UsageError("ucsio diff: OLD and NEW are both files or both backups "
-                             "(folders or .zip archives)")
+            backup, single = (files[0], files[1]) if many[0] else (files[1], files[0])
+            raise UsageError(f"ucsio diff: {backup} is a backup (a folder or .zip archive) and "
+                             f"{single} a single file: give two files or two backups")
         return _backups(args)
     from ..parsing.backup import load_one
     from ..output import paint_diff

@@ -4,7 +4,12 @@ tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data.
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
 .prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
 that cannot be read is reported on stderr (with --json also in "errors") and
-the others are still listed; exit 2 at the end if any could not be read."""
+the others are still listed; exit 2 at the end if any could not be read.
+
+Unset frames (KUKA configuration entries whose six values are all 0 and that
+have no name: the controller's defaults, which fill most of a $config.dat)
+are counted in one line, not listed; --all lists them too. --json always
+holds every frame, each with "set" (true or false)."""
 from __future__ import annotations
 
 from ..output import emit_json, fmt, table
@@ -13,20 +18,24 @@ from ..output import emit_json, fmt, table
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", metavar="FILE",
                    help="RAPID module, KRL .dat file, backup folder or .zip archive")
+    p.add_argument("--all", action="store_true",
+                   help="also list unset frames (KUKA entries all 0 and without a name)")
 
 
 def run(args) -> int:
     from . import load_inputs, report_failures
+    from ..review.unset import as_dict, is_set
 
     parsed, errors = load_inputs(args.files)
     status = 2 if errors else 0
-    frames = [fr for _, c in parsed for fr in c.frames]
     if args.json:
-        emit_json({"frames": [f.as_dict() for f in frames],
+        emit_json({"frames": [as_dict(f, c) for _, c in parsed for f in c.frames],
                    "files": [c.path for _, c in parsed],      # every file read, frames or not
                    "errors": [e.as_dict() for e in errors]})
         report_failures(errors)
         return status
+    frames = [f for _, c in parsed for f in c.frames if args.all or is_set(f, c)]
+    unset = sum(len(c.frames) for _, c in parsed) - len(frames)
     rows = []
     for f in frames:
         p = f.pose
@@ -44,6 +53,9 @@ def run(args) -> int:
         print(table(["name", "type", "label", "ref", "x", "y", "z", "a", "b", "c", "q", "at"],
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
-        print("no frames")
+        print("no set frames" if unset else "no frames")
+    if unset:
+        print(f"{unset} unset frame{'s' if unset != 1 else ''} not listed (all six values 0 and "
+              "no name: the controller's defaults; --all lists them)")
     report_failures(errors)
     return status

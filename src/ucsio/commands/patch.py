@@ -22,7 +22,9 @@ solution for a frame that is not relative to world (a robot-held tool, KUKA
 BASE_TYPE #TCP or a base on an external kinematic, an ABB wobj with robhold
 TRUE, an oframe of a moving or robot-held wobj) or a RAPID PERS that another
 module in the same folder also declares (RAPID shares it; --force overrides
-these two), an archive member, a rejected solution, and a file that changed on
+these two: such an oframe then gets uframe^-1 * world with the user frame the
+file holds, and the warning says so; an oframe whose uframe has no literal
+value is refused even then), an archive member, a rejected solution, and a file that changed on
 disk since it was read. A robot-held tool (ABB tooldata with robhold TRUE, KUKA
 TOOL_DATA) with a solution from `solve --tcp solve` gets the solved TCP's x, y,
 z and nothing else (orientation, mass and load stay); a solution whose TCP was
@@ -91,10 +93,11 @@ def solved_tcp_for(cf, args):
     patch on a tool writes the solved TCP's x, y, z and nothing else of it);
     None for every other frame, and where the solution's TCP was given, not
     solved (patch_frame then refuses a world frame for a tool, as before)."""
+    from ..review.names import find_frame
     from ..review.patch import resolve_name, robot_held_tool
     from ..method.solution import solved_tcp
 
-    frame = cf.frame(resolve_name(args.frame, args.oframe))
+    frame = find_frame(cf, resolve_name(args.frame, args.oframe))
     if not robot_held_tool(frame):
         return None
     return solved_tcp(args.solution_data, args.measured, allow_rejected=args.force)

@@ -119,7 +119,8 @@ def tool_tcp(spec: str) -> tuple[float, float, float]:
         raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
     from ..parsing.controller import load
     from ..geometry.frames import tool_tcp as tcp_of
-    return tcp_of(load(file).frame(name), "--tool")
+    from ..review.names import find_frame
+    return tcp_of(find_frame(load(file), name), "--tool")
 
 
 def run(args) -> int:

@@ -82,6 +82,8 @@ class Entry:
     station: str | None = None        # the report's roll-up (default: the controller's folder)
     problem: str | None = None        # why this entry cannot run (a bad value in its table)
     solve_tcp: bool = False           # tcp = "solve": the TCP estimated with the frame
+    tcp_tool: str | None = None       # tcp = "solve" with tool = "FILE:NAME": the solved TCP goes
+                                      # there (--patch-dir), FILE resolved
     sources: dict | None = None       # laser, robot, config, map, laser_units, robot_tool, robot_wobj
 
 
@@ -111,8 +113,10 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
         raise UcsioError(f"{where}: unknown key{'s' if len(unknown) > 1 else ''} "
                          f"{', '.join(map(repr, unknown))}{did_you_mean(unknown[0], allowed)} "
                          f"(allowed: {', '.join(allowed)})", file=path)
-    if "tcp" in table and "tool" in table:
-        raise UcsioError(f"{where}: give either tcp or tool, not both", file=path)
+    if "tcp" in table and "tool" in table and table["tcp"] != "solve":
+        raise UcsioError(f"{where}: give either tcp or tool, not both (tool goes with tcp only "
+                         "as tcp = \"solve\": the solved TCP is then written into that tool "
+                         "by --patch-dir)", file=path)
     return table
 
 
@@ -191,10 +195,15 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
         sources.update({k: merged[k] for k in SOURCE_OPTIONS if k in merged})
     tcp = None
     tool = None
+    tcp_tool = None
     solve_tcp = False
     if "tool" in merged:
         file, _, tname = merged["tool"].rpartition(":")
-        tool = f"{_resolve(base, file)}:{tname}"
+        if merged.get("tcp") == "solve":    # solve the TCP; --patch-dir writes it into the tool
+            solve_tcp = True
+            tcp_tool = f"{_resolve(base, file)}:{tname}"
+        else:                               # the TCP read from the tool
+            tool = f"{_resolve(base, file)}:{tname}"
     elif merged.get("tcp") == "solve":
         solve_tcp = True
     elif "tcp" in merged:
@@ -217,7 +226,7 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False),
                  reach=float(merged.get("reach", REACH)),
                  points=merged.get("points", False), station=merged.get("station"),
-                 solve_tcp=solve_tcp, sources=sources)
+                 solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources)
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -313,7 +322,11 @@ class EntryResult:
     uncertainty_error: str | None = None  # why --uncertainty gave nothing for this entry
     points_moved: dict | None = None      # points = true: count, max, mean, worst (taught points)
     points_error: str | None = None       # why they could not be placed
-    warnings: list[str] = field(default_factory=list)   # pairing a laser and a robot file
+    warnings: list[str] = field(default_factory=list)   # pairing a laser and a robot file; unset
+    simulated_set: bool | None = None     # False: the simulated frame is unset (review.unset)
+    tool_tcp: tuple | None = None         # tcp = "solve" with a tool: its TCP as the file holds it
+    tool_patched: str | None = None       # the patched copy the solved TCP was written into
+    tool_not_patched: str | None = None   # --patch-dir, tcp = "solve", no tool named: says so
 
     @property
     def accepted(self) -> bool:
@@ -340,6 +353,16 @@ class EntryResult:
         if s is None or s.accepted:
             return None
         return getattr(s, "reason", None) or "the dataset was rejected"
+
+    def tool_tcp_dict(self) -> dict[str, Any]:
+        """The named tool's TCP as the file holds it, and its distance (mm) from
+        the solved one where the entry was solved."""
+        x, y, z = self.tool_tcp
+        d: dict[str, Any] = {"x": x, "y": y, "z": z}
+        s = self.solution
+        if s is not None and getattr(s, "tcp_solved", None):
+            d["distance"] = math.dist(self.tool_tcp, s.tcp)
+        return d
 
     @property
     def station(self) -> str | None:
@@ -381,10 +404,13 @@ class EntryResult:
                   "frame_name": en.frame, "station": self.station, "vendor": self.vendor,
                   "tcp": list(en.tcp) if en.tcp is not None else
                   (list(self.solution.tcp) if self.solution is not None else None),
-                  "tool": en.tool, "threshold": en.threshold, "min_points": en.min_points,
+                  "tool": en.tool or en.tcp_tool, "threshold": en.threshold,
+                  "min_points": en.min_points,
                   "tolerance": en.tolerance})
         if self.simulated is not None:
             d["simulated"] = self.simulated.as_dict()
+        if self.simulated_set is not None:
+            d["simulated_set"] = self.simulated_set
         if self.delta is not None:
             d["diff"] = {k: self.delta[k] for k in ("dx", "dy", "dz", "da", "db", "dc", "angle",
                                                      "dist", "dt_mean", "group", "pass")}
@@ -410,6 +436,14 @@ class EntryResult:
             d["sources"] = en.sources
         if s is not None and getattr(s, "tcp_solved", None):
             d["tcp_solved"] = s.tcp_solved
+        if s is not None and getattr(s, "diagnosis", None):
+            d["diagnosis"] = s.diagnosis
+        if self.tool_tcp is not None:
+            d["tool_tcp"] = self.tool_tcp_dict()
+        if self.tool_patched is not None:
+            d["tool_patched"] = self.tool_patched
+        if self.tool_not_patched is not None:
+            d["tool_not_patched"] = self.tool_not_patched
         if self.warnings:
             d["warnings"] = list(self.warnings)
         if self.patched is not None:
@@ -497,7 +531,10 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
     from ..method.tcp_solve import diagnose
     found = diagnose(meas, sol, threshold=en.threshold, min_points=en.min_points,
                      no_exclusion=en.no_exclusion, reach=en.reach, sigma_laser=sigma_laser,
-                     sigma_robot=sigma_robot)
+                     sigma_robot=sigma_robot,
+                     advice="check the entry's tool or tcp in the manifest, or solve the TCP "
+                            "with the frame (tcp = \"solve\"); the points need not be measured "
+                            "again")
     if found:
         sol.diagnosis = found
         sol.reason = f"{sol.reason}; but {found['message']}"
@@ -505,7 +542,27 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
 
 def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
     file, _, name = spec.rpartition(":")
-    return tool_tcp(cache.controller(file).frame(name))
+    from ..review.names import find_frame
+    return tool_tcp(find_frame(cache.controller(file), name))
+
+
+def _solved_tcp_tool(cache: _Cache, spec: str):
+    """The tool ``tool = "FILE:NAME"`` names beside ``tcp = "solve"``: a
+    robot-held tool with a value, which ``--patch-dir`` writes the solved TCP
+    into (UcsioError otherwise)."""
+    from ..review.names import find_frame
+    from ..review.patch import robot_held_tool
+
+    file, _, name = spec.rpartition(":")
+    frame = find_frame(cache.controller(file), name)
+    if not robot_held_tool(frame):
+        raise UcsioError(f"{frame.name} is {frame.type} relative to {frame.reference}: a solved "
+                         "TCP is written into a robot-held tool (tooldata with robhold TRUE, "
+                         "KUKA TOOL_DATA)", file=frame.file, line=frame.line)
+    if frame.pose is None:
+        raise UcsioError(f"{frame.name} has no complete value to write the TCP into",
+                         file=frame.file, line=frame.line)
+    return frame
 
 
 def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
@@ -556,6 +613,9 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     """Solve and diff every entry; one entry's failure never stops the run."""
     import time
 
+    from ..review.names import find_frame
+    from ..review.unset import is_set, warning as unset_warning
+
     t0 = time.perf_counter()
     cache = _Cache()
     results = [EntryResult(entry=e) for e in manifest.entries]
@@ -576,20 +636,26 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
         try:
             cf = cache.controller(en.controller)
             r.vendor = cf.vendor
-            frame = cf.frame(en.frame)
+            frame = find_frame(cf, en.frame)
             r.frame_file, r.frame_line = frame.file, frame.line
             if frame.pose is None:
                 raise UcsioError(f"frame {frame.name} has no complete value", file=frame.file,
                                  line=frame.line)
             r.simulated = frame.pose
             frames[k] = (cf, frame)
+            r.simulated_set = is_set(frame, cf)
+            if not r.simulated_set:     # the diff is then the whole measured pose
+                r.warnings = [unset_warning(frame)]
             stage = "tool"
             tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
+            if en.tcp_tool is not None:     # where the solved TCP will go: a robot-held tool
+                r.tool_tcp = _solved_tcp_tool(cache, en.tcp_tool).pose.t
             stage = "measurement"
             if en.sources is None:
                 meas = cache.measurement(en.measurement)
             else:
-                meas, r.warnings = cache.paired(en.sources)
+                meas, paired = cache.paired(en.sources)
+                r.warnings = list(paired) + r.warnings    # the cache's list stays as it is
             if en.solve_tcp:                # the joint model: solved on its own, below
                 joint.append(k)
                 read[k] = (None, meas)
@@ -604,7 +670,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             owners.append(k)
             read[k] = (tcp, meas)
         except UcsioError as exc:
-            r.error, r.stage = (f"tool {en.tool}: {exc}" if stage == "tool" else str(exc)), stage
+            r.error, r.stage = (f"tool {en.tool or en.tcp_tool}: {exc}" if stage == "tool"
+                                else str(exc)), stage
         if progress:
             progress("read", k + 1, total)
     t1 = time.perf_counter()
@@ -693,26 +760,42 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
     """Patched copies of the controller files under ``patch_dir``, at their
     paths relative to the manifest (the originals are never touched). Every
     *passing* entry's frame is written with its measured value (a rejected
-    dataset or a frame over tolerance is for a person to look at first); a
-    file with several passing entries gets all of them in one copy. Each
-    frame goes through ``ucsio.review.patch.patch_frame`` for its refusals (the
-    sibling modules of a shared-PERS check read through ``cache``, so each
-    file is parsed once per run); the copy with all of a file's frames
-    applied is parsed once and every frame must read back from it
-    (``ucsio.review.patch.verify``). A refusal is the entry's ``patch_error``, and
-    that file's copy is not written (the file's other entries get a
-    ``patch_error`` naming the refused one). The copy is not written either
-    when the source file changed on disk since it was read (its bytes are
-    what was patched): every entry of that file gets the ``patch_error``."""
+    dataset or a frame over tolerance is for a person to look at first), and
+    where the entry solved its TCP (``tcp = "solve"``) and names a tool
+    (``tool = "FILE:NAME"``), that tool gets the solved TCP's x, y, z and
+    nothing else of it (``ucsio.review.patch.patch_tcp``, as ``patch`` does;
+    an entry that names no tool gets ``tool_not_patched``, saying so). A file
+    with several such changes gets all of them in one copy. Each goes through
+    ``patch_frame``'s refusals (the sibling modules of a shared-PERS check
+    read through ``cache``, so each file is parsed once per run); the copy
+    with all of a file's changes applied is parsed once and every frame must
+    read back from it (``ucsio.review.patch.verify``). A refusal is the
+    entry's ``patch_error``, and that file's copy is not written (the file's
+    other entries get a ``patch_error`` naming the refused one); two entries
+    writing one frame or tool are refused too. The copy is not written
+    either when the source file changed on disk since it was read (its bytes
+    are what was patched): every entry of that file gets the
+    ``patch_error``."""
     from ..review import patch as patcher
+    from ..review.names import find_frame
 
     def load(p) -> Any:     # a sibling module, through the run's cache
         return cache.controller(os.path.normpath(os.fspath(p)))
 
-    by_file: dict[str, list[tuple[int, EntryResult]]] = {}
+    # per file: (entry result, what: "frame" | "tool", the frame's or tool's name)
+    by_file: dict[str, list[tuple[EntryResult, str, str]]] = {}
     for k, r in enumerate(results):
-        if r.passed:
-            by_file.setdefault(r.entry.controller, []).append((k, r))
+        if not r.passed:
+            continue
+        by_file.setdefault(r.entry.controller, []).append((r, "frame", frames[k][1].name))
+        if r.entry.solve_tcp:
+            if r.entry.tcp_tool is None:
+                r.tool_not_patched = ("not written into any tool: the entry names none "
+                                      "(tool = \"FILE:NAME\" beside tcp = \"solve\" names "
+                                      "one)")
+            else:
+                file, _, name = r.entry.tcp_tool.rpartition(":")
+                by_file.setdefault(file, []).append((r, "tool", name))
     base = Path(manifest.path).resolve().parent
     out_root = Path(patch_dir)
     for path, items in by_file.items():
@@ -723,21 +806,26 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             rel = Path(Path(path).name)
         target = out_root / rel
         problem = None
-        culprit = None          # the entry whose frame was refused, if one was
+        culprit = None          # the entry whose change was refused, if one was
         planned = []
         seen: dict[int, str] = {}
-        for k, r in items:
-            frame = frames[k][1]
-            if id(frame) in seen:
-                problem = (f"entries {seen[id(frame)]!r} and {r.entry.name!r} both measure "
-                           f"{frame.name}; not patched")
-                break
-            seen[id(frame)] = r.entry.name
+        for r, what, name in items:
             try:
-                planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose,
-                                                   verify=False, load=load))
+                frame = find_frame(cf, name)
+                if id(frame) in seen:
+                    problem = (f"entries {seen[id(frame)]!r} and {r.entry.name!r} both write "
+                               f"{frame.name}; not patched")
+                    break
+                seen[id(frame)] = r.entry.name
+                if what == "frame":
+                    planned.append(patcher.patch_frame(cf, frame.name, r.solution.pose,
+                                                       verify=False, load=load))
+                else:
+                    planned.append(patcher.patch_tcp(cf, frame.name, r.solution.tcp,
+                                                     verify=False, load=load))
             except UcsioError as exc:
-                problem, culprit = str(exc), r.entry.name
+                problem = str(exc) if what == "frame" else f"tool {r.entry.tcp_tool}: {exc}"
+                culprit = r.entry.name
                 break
         try:
             if problem is None:
@@ -751,8 +839,8 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
 
                 def unchanged(path=path, raw=cf.document.raw) -> None:
                     try:
-                        same = Path(path).read_bytes() == raw
-                    except OSError:
+                        same = read_bytes(path) == raw
+                    except UcsioError:
                         same = False
                     if not same:
                         raise UcsioError("the file changed on disk since it was read; patched "
@@ -763,14 +851,22 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             problem = str(exc)
         except OSError as exc:
             problem = f"cannot write {target}: {exc.strerror or exc}"
-        for _, r in items:
+        for r, what, _ in items:
             if problem is None:
-                r.patched = str(target)
-            elif culprit is None or r.entry.name == culprit:
-                r.patch_error = problem
+                if what == "frame":
+                    r.patched = str(target)
+                else:
+                    r.tool_patched = str(target)
+                continue
+            if culprit is None or r.entry.name == culprit:
+                why = problem
             else:       # one copy per file: another entry's refusal stops this one too
-                r.patch_error = (f"not written: the patch of entry {culprit!r} in the same file "
-                                 f"was refused ({problem})")
+                why = (f"not written: the patch of entry {culprit!r} in the same file was "
+                       f"refused ({problem})")
+            if r.patch_error is None:
+                r.patch_error = why
+            elif why not in r.patch_error:      # its frame's file and its tool's file
+                r.patch_error += f"; {why}"
 
 
 def _verify_combined(cf, new: bytes, planned) -> None:
@@ -847,6 +943,7 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
         "std_e": float(np.std(es_all, ddof=1)) if len(es_all) >= 2 else None,
         "correlation": corr,
         "patched": sum(r.patched is not None for r in results),
+        "tools_patched": sum(r.tool_patched is not None for r in results),
         "patch_errors": sum(r.patch_error is not None for r in results),
         "std_convention": "sample (n-1); null below 2 entries",
     }

@@ -282,25 +282,45 @@ def residual_axis(values: Sequence[float], threshold: float | None) -> tuple[flo
     return bottom, top
 
 
+NAME_CHARS = 24          # an entry's name under its bar, at most (the tooltip has it all)
+NAME_FONT = 9.0          # the smallest font the names get (svg units, about px)
+
+
+def _short(name: str) -> str:
+    return name if len(name) <= NAME_CHARS else name[:NAME_CHARS].rstrip() + "…"
+
+
 def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
     """One bar per solved entry: e (solid) in front of the largest used
     residual (light); red for a rejected dataset; on a logarithmic axis
-    (``residual_axis``). The threshold's label sits in the right margin,
-    beside the plot, never over the bars."""
-    W, H, left, right, top_pad, bottom_pad = 1100, 260, 64, 120, 14, 44
+    (``residual_axis``). Under each bar its entry's name, turned upright
+    (shortened to NAME_CHARS; where the bars are narrower than a line of
+    NAME_FONT, every k-th bar is named and the axis title says so). The
+    threshold's label sits in the right margin, beside the plot, never over
+    the bars."""
+    W, left, right, top_pad, plot_h = 1100, 64, 120, 14, 202
     n = max(len(rows), 1)
     rows = [dict(r, e=_num(r.get("e")), max=_num(r.get("max"))) for r in rows]
+    pw = W - left - right
+    bw = pw / n
+    font = min(12.0, max(NAME_FONT, bw * 0.9))
+    every = max(1, math.ceil(font / bw))          # names a line apart, never on top of each other
+    names = [_short(str(r.get("name") or "")) for r in rows]
+    longest = max((len(nm) for k, nm in enumerate(names) if k % every == 0), default=0)
+    label_h = 8 + 0.6 * font * longest            # the upright names below the axis
+    bottom_pad = label_h + 30
+    H = top_pad + plot_h + bottom_pad
     vals = [r["max"] for r in rows if r["max"] is not None] + \
            [r["e"] for r in rows if r["e"] is not None]
     lo, hi = residual_axis(vals, threshold)
-    pw, ph = W - left - right, H - top_pad - bottom_pad
+    ph = plot_h
     span = math.log10(hi) - math.log10(lo)
 
     def Y(v):
         v = min(max(v, lo), hi)
         return top_pad + ph * (1 - (math.log10(v) - math.log10(lo)) / span)
 
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H}" role="img" '
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {W} {H:.0f}" role="img" '
            f'aria-label="measurement error e per entry">']
     decade = lo
     while decade <= hi * 1.0001:
@@ -315,7 +335,6 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
             out.append(f'<text x="{left - 8}" y="{y + 4:.1f}" text-anchor="end" '
                        f'font-size="{13 if major else 11}" fill="#1d2329">{v:g}</text>')
         decade *= 10
-    bw = pw / n
     base = Y(lo)
     for i, r in enumerate(rows):
         x = left + i * bw
@@ -328,6 +347,11 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
                        f'x="{x + bw * 0.1:.2f}" y="{Y(r["e"]):.1f}" width="{bw * 0.8:.2f}" '
                        f'height="{base - Y(r["e"]):.1f}" fill="{color}"><title>{_e(r.get("name"))}: '
                        f'e {r["e"]:.3f} mm, max {_f(r.get("max"))} mm</title></rect>')
+        if i % every == 0:       # the name, upright, its end at the axis under the bar
+            cx, cy = x + bw / 2 + font * 0.35, base + 6
+            out.append(f'<text class="ename" x="{cx:.1f}" y="{cy:.1f}" text-anchor="end" '
+                       f'font-size="{font:g}" fill="{"#8e1c1c" if color == BAD else "#1d2329"}" '
+                       f'transform="rotate(-90 {cx:.1f} {cy:.1f})">{_e(names[i])}</text>')
     if threshold is not None:
         y = Y(threshold)
         out.append(f'<line class="threshold" x1="{left}" x2="{W - right}" y1="{y:.1f}" '
@@ -335,9 +359,15 @@ def residual_bars_svg(rows: Sequence[dict], threshold: float | None) -> str:
                    f'<text x="{W - right + 6}" y="{y + 4:.1f}" font-size="13" fill="{BAD}">'
                    f'threshold {threshold:g} mm</text>')
     out.append(f'<line x1="{left}" x2="{W - right}" y1="{base:.1f}" y2="{base:.1f}" stroke="#1d2329"/>')
-    out.append(_axis_titles(left + pw / 2, H - 14, f"entries in manifest order ({len(rows)} solved)",
+    named = "" if every == 1 else f"; every {every}{_ordinal(every)} one named"
+    out.append(_axis_titles(left + pw / 2, H - 10,
+                            f"entries in manifest order ({len(rows)} solved{named})",
                             top_pad + ph / 2, "mm (log scale)"))
     return "".join(out)
+
+
+def _ordinal(k: int) -> str:
+    return "th" if 10 <= k % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(k % 10, "th")
 
 
 def residual_legend(threshold: float | None) -> str:
@@ -463,8 +493,8 @@ ACTION_KINDS = (
     ("over tolerance", "Over tolerance: the fixture is not where the simulation has it",
      "check that the fixture sits where the cell layout says; if it does, have the programs "
      "corrected (re-teach, or update the frame in the simulation) before they are downloaded."),
-    ("rejected", "Rejected: the measurement is not good enough to trust",
-     "measure these stations again; each line says what was wrong."),
+    ("rejected", "Rejected: the points do not give a frame to trust",
+     "each line says what was wrong and what to do about it."),
     ("error", "Failed: ucsio could not process these entries",
      "fix the input each line names and run the batch again."),
     ("patch error", "Not patched: the corrected controller file was not written",
@@ -489,9 +519,13 @@ def _why(e: dict) -> tuple[str, str]:
         return why + ".", ""
     if status == "rejected":
         reason = _reason(e)
+        if e.get("diagnosis"):      # a wrong TCP: the points are fine
+            return reason + ".", ("correct the TCP of this entry (its tool or tcp in the "
+                                  "manifest, or tcp = \"solve\") and run the batch again; the "
+                                  "points need not be measured again.")
         todo = ("measure more points, spread over the whole fixture" if "too few" in reason
                 or "pin" in reason else "check the reflector, its TCP, and that the fixture "
-                "did not move while measuring")
+                "did not move while measuring, then measure again")
         return reason + ".", todo + "."
     if status == "error":
         todo = {
@@ -537,6 +571,17 @@ def _actions(entries: list[dict]) -> str:
         kinds.append(f'<div class="kind" data-kind="{_e(status)}"><h3><span class="pill {cls}">'
                      f'{len(items)}</span> {_e(heading)}</h3><p class="todo">{_e(todo)}</p>'
                      f'<ol>{"".join(items)}</ol></div>')
+    unset = [(i, e) for i, e in enumerate(entries)
+             if e.get("simulated_set") is False and e.get("status") != "error"]
+    if unset:
+        total += len(unset)
+        kinds.append('<div class="kind" data-kind="unset"><h3><span class="pill warn">'
+                     f'{len(unset)}</span> Simulated frame unset: the difference is the whole '
+                     'measured pose</h3><p class="todo">check the frame named in the manifest '
+                     '(an unset entry is most often the wrong number); where it is right, the '
+                     'measured frame is new, not a correction of the simulation.</p><ol>'
+                     + "".join(_action_item(i, e, "unset", _unset_words(e), "")
+                               for i, e in unset) + "</ol></div>")
     unplaced = [(i, e) for i, e in enumerate(entries) if e.get("points_error")]
     if unplaced:
         total += len(unplaced)
@@ -552,6 +597,14 @@ def _actions(entries: list[dict]) -> str:
                 'within tolerance and the programs can be used as they are.</p></section>')
     return (f'<section id="actions"><h2>Needs action: {total}</h2>' + "".join(kinds)
             + "</section>")
+
+
+def _unset_words(e: dict) -> str:
+    """The entry's unset-frame warning (batch puts it in ``warnings``)."""
+    for w in e.get("warnings") or []:
+        if isinstance(w, str) and " is unset " in w:
+            return w + "."
+    return f"{e.get('frame_name') or 'the frame'} is unset."
 
 
 def _stations(entries: list[dict]) -> str:
@@ -616,7 +669,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
              ("passed", _f(sm.get("passed")), "ok", "passed", "within tolerance"),
              ("over tolerance", _f(sm.get("over_tolerance")), "warn", "over_tolerance",
               "frame moved too far"),
-             ("rejected", _f(sm.get("rejected")), "bad", "rejected", "measure again"),
+             ("rejected", _f(sm.get("rejected")), "bad", "rejected", "points not trusted"),
              ("errors", _f(sm.get("errors")), "err", "errors", "could not be processed"),
              ("success rate", _pct(sm.get("success_rate")), "ok", "success_rate",
               "passed of total")]
@@ -695,6 +748,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
 
     parts.append("<h2>Entries</h2>")
     points = any(isinstance(e.get("points_moved"), dict) for e in entries)
+    solved = any(_dict(e.get("tcp_solved")) for e in entries)    # tcp = "solve" entries
     parts.append('<table id="entries"><tr><th>entry</th><th>station</th><th>status</th>'
                  '<th class="n">points used</th>'
                  '<th class="n">e<small>measurement error, mm</small></th>'
@@ -703,7 +757,9 @@ def render_report(data: dict, title: str = "ucsio batch report",
                  '<th class="n">dy<small>mm</small></th><th class="n">dz<small>mm</small></th>'
                  '<th class="n">angle<small>turned, °</small></th>'
                  + ('<th class="n">taught points<small>moved up to, mm (n)</small></th>'
-                    if points else "") + '</tr>')
+                    if points else "")
+                 + ('<th class="n">TCP solved<small>x, y, z mm ± 95 % doubt</small></th>'
+                    if solved else "") + '</tr>')
     for i, e in enumerate(entries):
         d = _dict(e.get("diff"))
         status = e.get("status")
@@ -726,7 +782,8 @@ def render_report(data: dict, title: str = "ucsio batch report",
             f'<td class="n">{_f(e.get("group"))}</td><td class="n">{_f(d.get("dx"))}</td>'
             f'<td class="n">{_f(d.get("dy"))}</td><td class="n">{_f(d.get("dz"))}</td>'
             f'<td class="n">{_f(d.get("angle"), 4)}</td>'
-            + (f'<td class="n">{_points_cell(pm)}</td>' if points else "") + '</tr>')
+            + (f'<td class="n">{_points_cell(pm)}</td>' if points else "")
+            + (f'<td class="n tcp-solved">{_tcp_cell(e)}</td>' if solved else "") + '</tr>')
     parts.append("</table>")
 
     parts.append("<h2>Details</h2>")
@@ -737,6 +794,57 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append(f'<script type="application/json" id="ucsio-data">{payload}</script>')
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
+
+
+def _tcp_text(t: dict) -> str:
+    return f"{_f(t.get('x'))}, {_f(t.get('y'))}, {_f(t.get('z'))}"
+
+
+def _tool_name(spec: Any) -> str:
+    """'Cell.mod:tReflector' of '/path/to/Cell.mod:tReflector'."""
+    file, _, name = str(spec or "").rpartition(":")
+    return f"{os.path.basename(file)}:{name}" if file else str(spec or "")
+
+
+def _tcp_cell(e: dict) -> str:
+    """An entries-table cell: the solved TCP, its 95 % doubt, where it went."""
+    t = _dict(e.get("tcp_solved"))
+    if not t or e.get("status") == "error":
+        return "\u2013"
+    where = ""
+    if e.get("tool_patched"):
+        where = f" → {_e(_tool_name(e.get('tool')))}"
+    elif e.get("tool_not_patched"):
+        where = " (no tool patched)"
+    return f"{_e(_tcp_text(t))} ± {_f(t.get('at_95'))}{where}"
+
+
+def _tcp_note(e: dict, base: str | None) -> str:
+    """The details' paragraph on a TCP solved with the frame: the TCP, its
+    doubt, the tool the manifest names (its value and how far), and whether
+    the tool was patched, or that none was (no tool named)."""
+    t = _dict(e.get("tcp_solved"))
+    std = _dict(t.get("std"))
+    txt = (f"TCP solved with the frame: {_e(_tcp_text(t))} mm in flange coordinates, within "
+           f"{_f(t.get('at_95'))} mm at 95 % (std {_f(std.get('x'))}, {_f(std.get('y'))}, "
+           f"{_f(std.get('z'))} mm).")
+    tool = e.get("tool")
+    held = _dict(e.get("tool_tcp"))
+    if tool and held:
+        txt += (f" Tool <code>{_e(_tool_name(tool))}</code> holds {_e(_tcp_text(held))} mm, "
+                f"{_f(held.get('distance'))} mm from it")
+        if e.get("tool_patched"):
+            txt += (f"; the solved TCP is written into it in the patched copy "
+                    f'<a class="patched" href="{_e(_href(str(e["tool_patched"]), base))}">'
+                    f'{_e(e["tool_patched"])}</a> (x, y, z only).')
+        elif e.get("patch_error"):
+            txt += "; it was not patched (see the patch error)."
+        else:
+            txt += "; it was not patched."
+    else:
+        txt += (" The manifest names no tool for it, so no tool was patched (tool = "
+                "\"FILE:NAME\" beside tcp = \"solve\" names the one to write it into).")
+    return f'<p class="note tcp-solved" style="flex-basis:100%">{txt}</p>'
 
 
 def _points_cell(pm: dict) -> str:
@@ -800,6 +908,8 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
     if e.get("patch_error"):
         body.append('<div class="err-msg patch-error" style="flex-basis:100%">patched copy NOT '
                     f'written: {_e(e["patch_error"])}</div>')
+    for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
+        body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
     if e.get("simulated") or e.get("frame"):
         rows = _pose_rows("simulated", e.get("simulated")) + _pose_rows(
             "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"))
@@ -841,6 +951,8 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         if e.get("uncertainty_error"):
             info += f"; uncertainty not computed: {e['uncertainty_error']}"
         body.append(f'<p class="note" style="flex-basis:100%">{_e(info)}</p>')
+    if _dict(e.get("tcp_solved")) and status != "error":
+        body.append(_tcp_note(e, base))
     prec = _dict(e.get("precision"))
     if _num(prec.get("at_reach")) is not None:
         body.append(f'<p class="note precision" style="flex-basis:100%">How well the points pin '
@@ -861,10 +973,16 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         body.append(f'<div class="err-msg" style="flex-basis:100%">taught points not placed: '
                     f'{_e(e["points_error"])}</div>')
     if status == "rejected":
+        again = "" if e.get("diagnosis") else "; measure again"   # a wrong TCP: check it
         body.append('<div class="err-msg rejected" style="flex-basis:100%">REJECTED: '
-                    f'{_e(_reason(e))}; measure again</div>')
-    src = (f"measurement <code>{_e(e.get('measurement'))}</code>; controller "
-           f"<code>{_e(e.get('controller'))}</code>")
+                    f'{_e(_reason(e))}{again}</div>')
+    sources = _dict(e.get("sources"))
+    if sources.get("laser") or sources.get("robot"):   # laser + robot: every file it was read from
+        src = "; ".join(f"{k} <code>{_e(sources[k])}</code>"
+                        for k in ("laser", "robot", "config", "map") if sources.get(k))
+    else:
+        src = f"measurement <code>{_e(e.get('measurement'))}</code>"
+    src += f"; controller <code>{_e(e.get('controller'))}</code>"
     if e.get("patched"):
         src += (f'; patched copy <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
                 f'{_e(e["patched"])}</a>')

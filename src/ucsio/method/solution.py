@@ -74,7 +74,9 @@ def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = Fa
         reason = data.get("reason")
         why = (f"the dataset was rejected: {reason.strip()}"
                if isinstance(reason, str) and reason.strip() else "the dataset was rejected")
-        raise RejectedDataset(f"{why}; measure again", file=path)
+        if not data.get("diagnosis"):   # a wrong TCP: the reason says what to check instead
+            why += "; measure again"
+        raise RejectedDataset(why, file=path)
     frame = data.get("frame", data)
     if not isinstance(frame, dict):
         raise UcsioError("'frame' is not a JSON object", file=path)

@@ -368,12 +368,18 @@ def uncertainty(measurement, sol, n_samples: int = 10000,
 
 # ---------------------------------------------------------------- diagnosis
 
-def diagnose(measurement, sol, **settings) -> dict[str, Any] | None:
+#: what the diagnosis tells a command-line user to do (``batch`` names its keys)
+DIAGNOSIS_ADVICE = "check --tool / --tcp, or solve the TCP with the frame (--tcp solve)"
+
+
+def diagnose(measurement, sol, *, advice: str = DIAGNOSIS_ADVICE,
+             **settings) -> dict[str, Any] | None:
     """For a rejected fixed-TCP solve: the joint model's fit, where it is
     accepted with the same settings and its TCP is more than the threshold
     away from the one given (a wrong TCP, not a bad measurement), else None.
     Returns ``tcp`` (x, y, z), ``distance`` (mm from the given TCP),
-    ``n_used``, ``rms``, ``max`` and ``message``."""
+    ``n_used``, ``rms``, ``max`` and ``message`` (ending with ``advice``:
+    what to check instead of measuring again)."""
     if sol.accepted or len(measurement.names) < MIN_POINTS_JOINT:
         return None
     hand = [p.name for p in sol.points if p.excluded_by == "hand"]
@@ -389,7 +395,6 @@ def diagnose(measurement, sol, **settings) -> dict[str, Any] | None:
     x, y, z = joint.tcp
     msg = (f"the residuals are what a wrong TCP gives: a TCP of {x:.3f}, {y:.3f}, {z:.3f} mm "
            f"(flange), {dist:.2f} mm from the one given, fits {joint.n_used} of "
-           f"{joint.n_points} points within {joint.max:.3f} mm; check --tool / --tcp, or solve "
-           "the TCP with the frame (--tcp solve)")
+           f"{joint.n_points} points within {joint.max:.3f} mm; {advice}")
     return {"tcp": [x, y, z], "distance": dist, "n_used": joint.n_used, "rms": joint.rms,
             "max": joint.max, "message": msg}

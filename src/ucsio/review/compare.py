@@ -22,7 +22,10 @@ from ..geometry.frames import Frame, Pose
 from ..parsing.controller import ControllerFile, load, parse
 from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
-from .patch import _close32, measured_in_parent, poses_equal, reference_problem, resolve_name
+from .names import find_frame
+from .unset import is_set, warning as unset_warning
+from .patch import (_close32, measured_in_parent, object_frame_basis, poses_equal,
+                    reference_problem, resolve_name)
 
 
 
@@ -35,7 +38,7 @@ def _is_devnull(path: str) -> bool:
 def diff_frame(cf: ControllerFile, name: str, measured: Pose,
                tolerance: float = DEFAULT_TOLERANCE, oframe: bool = False) -> dict[str, Any]:
     """SPEC's one-frame diff: Δ = measured − simulated (the frame in ``cf``)."""
-    frame = cf.frame(resolve_name(name, oframe))
+    frame = find_frame(cf, resolve_name(name, oframe))
     if frame.pose is None:
         raise UcsioError(f"{frame.name}: the file gives no literal value for this frame",
                          file=frame.file, line=frame.line)
@@ -45,9 +48,17 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
     if frame.label:
         d["label"] = frame.label
     d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
+    warnings = []
     why = reference_problem(cf, frame)
     if why:
-        d["warning"] = f"{frame.name}: {why}; the measured frame is in robot world"
+        basis = object_frame_basis(cf, frame)
+        warnings.append(f"{frame.name}: {why}; compared as {basis}" if basis else
+                        f"{frame.name}: {why}; the measured frame is in robot world")
+    d["set"] = is_set(frame, cf)
+    if not d["set"]:
+        warnings.append(unset_warning(frame))
+    if warnings:
+        d["warning"] = "; ".join(warnings)
     return d
 
 
@@ -216,7 +227,7 @@ def change_lines(result: dict[str, Any]) -> list[str]:
     """The frames changed (with their Δ and old/new values), added and removed."""
     lines: list[str] = []
     for c in result["changed"]:
-        head = f"~ {c['name']} ({c['type']}): {', '.join(c['changes'])} changed"
+        head = f"~ {_named(c)}: {', '.join(c['changes'])} changed"
         lines.append(head)
         if "dx" in c and "value" in c["changes"]:
             lines.append(f"    Δ dx {c['dx']:+.3f}  dy {c['dy']:+.3f}  dz {c['dz']:+.3f} mm  "
@@ -233,10 +244,21 @@ def change_lines(result: dict[str, Any]) -> list[str]:
             if k != "value":
                 lines.append(f"    {k}: {_info_text(c['old'].get(k))} -> {_info_text(c['new'].get(k))}")
     for a in result["added"]:
-        lines.append(f"+ {a['name']} ({a['type']}) added: {_pose_text(a)}")
+        lines.append(f"+ {_named(a)} added: {_pose_text(a)}")
     for r in result["removed"]:
-        lines.append(f"- {r['name']} ({r['type']}) removed: {_pose_text(r)}")
+        lines.append(f"- {_named(r)} removed: {_pose_text(r)}")
     return lines
+
+
+def _named(item: dict) -> str:
+    """A frame as a reviewer knows it: its name, its label where the file
+    gives one (KUKA ``BASE_NAME[3,]``, quoted as the file writes it), its
+    type: ``BASE_DATA[3] "pintura" (BASE_DATA)``, ``wobj1 (wobjdata)``."""
+    label = item.get("label")
+    if label is None and isinstance(item.get("new"), dict):
+        label = item["new"].get("label")
+    shown = f' "{label}"' if label else ""
+    return f"{item['name']}{shown} ({item['type']})"
 
 
 # ------------------------------------------------------------- git

@@ -50,6 +50,7 @@ from ..parsing import regex
 from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
 from ..values import Value
+from .names import find_frame
 
 # Written precision (decimals) and half a step: what "unchanged" means.
 TRANS_DECIMALS = 3
@@ -325,12 +326,37 @@ def _object_frame_parent(cf: ControllerFile, frame: Frame) -> Frame | None:
 def measured_in_parent(cf: ControllerFile, frame: Frame, world: Pose) -> Pose:
     """A measured UCS (robot world) expressed where ``frame`` is given: an ABB
     object frame is relative to its user frame (world = uframe * oframe), so
-    it becomes uframe^-1 * world; every other frame is compared as it is
+    it becomes uframe^-1 * world, with the user frame the file holds (also
+    where that is not fixed in world: reference_problem says so, and only
+    ``--force`` writes it); every other frame is compared as it is
     (reference_problem says when that is not robot world)."""
     uframe = _object_frame_parent(cf, frame)
-    if uframe is not None and uframe.reference == "world" and uframe.pose is not None:
+    if uframe is not None and uframe.pose is not None:
         return uframe.pose.inverse().compose(world)
     return world
+
+
+def _uframe_words(uframe: Frame) -> str:
+    """Why an ABB user frame is not a fixed frame in robot world."""
+    if uframe.info.get("ufprog") is False:
+        return f"the controller moves it: ufprog FALSE, ufmec {uframe.info.get('ufmec')!r}"
+    if uframe.reference == "wrist":
+        return "it is relative to the wrist: robhold TRUE, the robot holds the work object"
+    return f"it is relative to {uframe.reference!r}"
+
+
+def object_frame_basis(cf: ControllerFile, frame: Frame) -> str | None:
+    """For an ABB object frame whose user frame is not fixed in robot world
+    but has a value: how a measured frame is put into it (what --force
+    writes and diff compares), naming that user frame's values; else None."""
+    uframe = _object_frame_parent(cf, frame)
+    if uframe is None or uframe.reference == "world" or uframe.pose is None:
+        return None
+    p = uframe.pose
+    a, b, c = p.abc
+    return (f"uframe⁻¹ · world with {uframe.name}'s user frame as this file holds it "
+            f"(x {p.x:.3f} y {p.y:.3f} z {p.z:.3f} a {a:.4f} b {b:.4f} c {c:.4f}), right only "
+            "while the user frame is there")
 
 
 def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
@@ -349,8 +375,11 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
         uframe = _object_frame_parent(cf, frame)
         if uframe is not None and uframe.reference == "world" and uframe.pose is not None:
             return None
+        if uframe is None or uframe.pose is None:
+            return ("the object frame is relative to a user frame with no literal value: a "
+                    "measured world frame cannot be expressed in it")
         return ("the object frame is relative to a user frame that is not a fixed frame "
-                "in robot world; patch the user frame instead")
+                f"in robot world ({_uframe_words(uframe)})")
     if ref == "flange":
         return ("this tool is held by the robot: its frame is relative to the flange, not world "
                 "(a TCP solved with `solve --tcp solve` is what can be written here)")
@@ -579,7 +608,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     (``verify(result, parsed=...)``, as ``batch`` does) passes False.
     ``load``: how sibling modules are read for the shared-PERS check
     (``shared_declarations``)."""
-    frame = cf.frame(resolve_name(name, oframe))
+    frame = find_frame(cf, resolve_name(name, oframe))
     where = {"file": frame.file, "line": frame.line}
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
@@ -595,11 +624,21 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     if measured:
         pose = measured_in_parent(cf, frame, pose)
         why = reference_problem(cf, frame)
+        basis = object_frame_basis(cf, frame)
+        if why and frame.info.get("component") == "oframe" and basis is None:
+            # no user frame value to express it in: not even --force can write it
+            raise UcsioError(f"{frame.name}: {why}; refusing to write a measured world frame",
+                             **where)
         if why:
             if not force:
+                how = (f"--force writes it as {basis}" if basis else
+                       "--force to write it anyway")
                 raise UcsioError(f"{frame.name}: {why}; refusing to write a measured world "
-                                 "frame (--force to write it anyway)", **where)
-            warnings.append(f"{frame.name}: {why} (written anyway: --force)")
+                                 f"frame ({how})", **where)
+            if basis:
+                warnings.append(f"{frame.name}: {why}; written anyway (--force) as {basis}")
+            else:
+                warnings.append(f"{frame.name}: {why} (written anyway: --force)")
     if check_siblings:
         shared = shared_declarations(frame, warnings, load=load)
         if shared:
@@ -638,7 +677,7 @@ def patch_tcp(cf: ControllerFile, name: str, tcp, **options) -> PatchResult:
     solve``) into a robot-held tool: its translation only; orientation, mass
     and load stay as written. The same refusals, read-back check and writing
     as a frame patch."""
-    frame = cf.frame(name)
+    frame = find_frame(cf, name)
     if not robot_held_tool(frame):
         raise UcsioError(f"{frame.name}: a solved TCP belongs in a robot-held tool (tooldata "
                          f"with robhold TRUE, KUKA TOOL_DATA); this is {frame.type} relative to "
@@ -745,9 +784,10 @@ def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None
 # ----------------------------------------------------------------- writing
 
 def _same_on_disk(path: str, doc: Document) -> bool:
+    from ..files import read_bytes   # never waits on a pipe put in the file's place
     try:
-        return Path(path).read_bytes() == doc.raw
-    except OSError:
+        return read_bytes(path) == doc.raw
+    except UcsioError:
         return False
 
 

@@ -1,0 +1,58 @@
+"""Unset frames: the defaults a KUKA controller's configuration is full of.
+
+A real ``$config.dat`` declares 16 tools, 32 bases, 16 reference points and
+a few correction frames, and most of them hold the controller's default: all
+six values 0 and a blank name. Nobody taught or named them. A frame is
+**unset** when all of these hold:
+
+- it is KUKA data the configuration pre-fills: a ``BASE_DATA[n]`` or
+  ``TOOL_DATA[n]`` entry, or another FRAME of the ``DEFDAT $CONFIG`` data
+  list (``REF_PT[n]``, ``TOOL_CORR``, ...);
+- its six values X, Y, Z, A, B, C are all exactly 0;
+- it has no name: no ``BASE_NAME[n,]``/``TOOL_NAME[n,]`` entry, a blank one
+  (the controller writes ``" "``), or one that only repeats the entry's own
+  name (``TOOL_NAME[2,]="TOOL_DATA[2]"`` stands in a real $config.dat).
+
+Everything else is set: a named zero base (someone chose it), the FRAMEs a
+program's ``.dat`` declares (a ``NULLFRAME`` someone wrote), every ABB frame
+(RAPID has no table of defaults; a declared tool0-like identity is the
+user's), and a frame without a value (that is the ``no-value`` lint's case).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+TABLES = ("BASE_DATA", "TOOL_DATA")
+
+
+def configuration(cf) -> bool:
+    """Whether ``cf`` is the controller's configuration (``DEFDAT $CONFIG``)."""
+    defdat = cf.extra.get("defdat") if cf is not None else None
+    return isinstance(defdat, dict) and str(defdat.get("name") or "").upper() == "$CONFIG"
+
+
+def is_set(frame, cf=None) -> bool:
+    """False for an unset frame (module docstring); ``cf``: the file it is in."""
+    if frame.vendor != "kuka" or frame.pose is None:
+        return True
+    if frame.type not in TABLES and not (frame.type == "FRAME" and configuration(cf)):
+        return True
+    nums = frame.numbers
+    if len(nums) != 6 or any(n.value != 0 for n in nums.values()):
+        return True
+    label = (frame.label or "").strip()
+    return bool(label) and label.casefold() != frame.name.casefold()
+
+
+def as_dict(frame, cf=None) -> dict[str, Any]:
+    """``frame.as_dict()`` with ``set`` (``frames --json``)."""
+    d = frame.as_dict()
+    d["set"] = is_set(frame, cf)
+    return d
+
+
+def warning(frame) -> str:
+    """What diff, batch and the report say about an unset simulated frame."""
+    return (f"{frame.name} is unset (all six values 0 and no name: the controller's default, "
+            "not a frame anyone taught): the difference is the whole measured pose, not a "
+            "correction")

@@ -1,0 +1,115 @@
+"""Unset frames (issue 18, point 8).
+
+A real $config.dat lists some 69 frames, most of them the controller's
+default: all six values zero and no name. ``frames`` lists the set ones and
+one line counting the rest (``--all`` lists every one; JSON always holds all,
+each with ``"set"``); ``diff``, ``batch`` and the report warn when the
+simulated frame is unset, because the difference is then the whole measured
+pose, not a correction.
+"""
+from __future__ import annotations
+
+import json
+import shutil
+
+import pytest
+
+from conftest import FIXTURES, corpus_file
+from ucsio.cli import main
+
+CELL_CONFIG = FIXTURES / "kuka" / "cell_config.dat"
+MEAS = FIXTURES / "measurements" / "kuka_base3.csv"
+TCP = [-20.67, 89.73, 33.44]
+
+
+def frames_json(path, capsys) -> dict:
+    assert main(["frames", str(path), "--json"]) == 0
+    return {f["name"]: f for f in json.loads(capsys.readouterr().out)["frames"]}
+
+
+def test_unset_is_a_zero_unnamed_entry_of_the_configuration(capsys):
+    got = frames_json(CELL_CONFIG, capsys)
+    assert all(isinstance(f["set"], bool) for f in got.values())
+    assert got["TOOL_DATA[4]"]["set"] is False           # zero, TOOL_NAME[4,]=" "
+    assert got["BASE_DATA[4]"]["set"] is True            # zero, but named "gripper"
+    assert got["TOOL_DATA[1]"]["set"] is True            # values
+    zin = frames_json(corpus_file("kuka", "Zinkerreka__KRC__R1__System"), capsys)
+    assert zin["TOOL_DATA[2]"]["set"] is False and zin["BASE_DATA[6]"]["set"] is False
+    assert zin["REF_PT[1]"]["set"] is False and zin["TOOL_CORR"]["set"] is False
+    assert zin["BASE_DATA[2]"]["set"] is True and zin["RECIPE_TCP[1]"]["set"] is True
+    # a label that only repeats the entry's own name is the default one
+    tfg = frames_json(corpus_file("kuka", "luciagumbau228"), capsys)
+    assert tfg["TOOL_DATA[2]"]["label"] == "TOOL_DATA[2]" and tfg["TOOL_DATA[2]"]["set"] is False
+    # a named zero base is someone's choice
+    kam = frames_json(corpus_file("kuka", "KamWisa__BPF2PLTZPK2__$config"), capsys)
+    assert kam["BASE_DATA[10]"]["label"] == "KukaReburn" and kam["BASE_DATA[10]"]["set"] is True
+    # a program's own zero FRAMEs were declared by someone: set
+    prog = frames_json(corpus_file("kuka", "C1_pickConveyorBP"), capsys)
+    assert prog["hmiOffsetFrame"]["set"] is True and prog["hmiOffsetFrame"]["x"] == 0
+    # and so is an ABB identity frame (tool0, wobj0 alike)
+    abb = frames_json(FIXTURES / "patch" / "cell.mod", capsys)
+    assert abb["wobjPlain"]["set"] is True and abb["wobjPlain"]["x"] == 0
+
+
+def test_frames_lists_the_set_ones_and_counts_the_rest(capsys):
+    cfg = corpus_file("kuka", "Zinkerreka__KRC__R1__System")
+    every = frames_json(cfg, capsys)
+    unset = [n for n, f in every.items() if not f["set"]]
+    assert len(every) == 76 and len(unset) == 62
+    assert main(["frames", str(cfg)]) == 0
+    out = capsys.readouterr().out
+    rows = [ln.split()[0] for ln in out.splitlines()[2:] if ln.strip()]
+    assert "BASE_DATA[1]" in rows and "RECIPE_TCP[1]" in rows
+    assert not set(rows) & set(unset)
+    assert out.rstrip().splitlines()[-1] == (
+        "62 unset frames not listed (all six values 0 and no name: the controller's "
+        "defaults; --all lists them)")
+    assert main(["frames", str(cfg), "--all"]) == 0
+    out = capsys.readouterr().out
+    assert "unset frames not listed" not in out
+    assert {ln.split()[0] for ln in out.splitlines()[2:] if ln.strip()} == set(every)
+
+
+def test_diff_warns_when_the_simulated_frame_is_unset(tmp_path, capsys):
+    cfg = corpus_file("kuka", "Zinkerreka__KRC__R1__System")
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"accepted": True, "frame": {"x": 1200, "y": 300, "z": 650,
+                                                          "a": 30, "b": 0, "c": 0}}))
+    assert main(["diff", str(cfg), "--frame", "BASE_DATA[6]", "--measured", str(sol),
+                 "--tolerance", "5000"]) == 0
+    err = capsys.readouterr().err
+    assert "BASE_DATA[6] is unset" in err and "whole measured pose" in err, err
+    assert main(["diff", str(cfg), "--frame", "BASE_DATA[6]", "--measured", str(sol),
+                 "--json"]) == 1
+    d = json.loads(capsys.readouterr().out)
+    assert d["set"] is False and "unset" in d["warning"]
+    assert main(["diff", str(cfg), "--frame", "BASE_DATA[1]", "--measured", str(sol),
+                 "--json"]) == 1
+    d = json.loads(capsys.readouterr().out)
+    assert d["set"] is True and "warning" not in d
+
+
+def test_batch_and_its_report_warn_when_the_simulated_frame_is_unset(tmp_path, capsys):
+    shutil.copy(corpus_file("kuka", "Zinkerreka__KRC__R1__System"), tmp_path / "$config.dat")
+    shutil.copy(MEAS, tmp_path / "m.csv")
+    (tmp_path / "station.toml").write_text(
+        f'[defaults]\ncontroller = "$config.dat"\nmeasurement = "m.csv"\ntcp = {TCP}\n'
+        'tolerance = 100000.0\n'
+        '[[entry]]\nname = "unused base"\nframe = "BASE_DATA[6]"\n'
+        '[[entry]]\nname = "named base"\nframe = "pickBP"\n')
+    report = tmp_path / "report.html"
+    assert main(["batch", str(tmp_path / "station.toml"), "--report", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert "unused base: BASE_DATA[6] is unset" in out and "whole measured pose" in out
+    assert "named base:" not in out
+    html = report.read_text().split('<script type="application/json"', 1)[0]   # what is shown
+    actions = html.split('id="actions"', 1)[1].split("</section>", 1)[0]
+    assert "BASE_DATA[6] is unset" in actions and 'data-name="unused base"' in actions
+    assert 'data-name="named base"' not in actions
+    detail = html.split('<details id="e0"', 1)[1].split("</details>", 1)[0]
+    assert "BASE_DATA[6] is unset" in detail
+    assert main(["batch", str(tmp_path / "station.toml"), "--json"]) == 0
+    unused, named = json.loads(capsys.readouterr().out)["entries"]
+    assert unused["simulated_set"] is False
+    assert any("is unset" in w for w in unused["warnings"])
+    assert named["simulated_set"] is True and "warnings" not in named
