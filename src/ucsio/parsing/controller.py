@@ -12,6 +12,7 @@ from ..errors import UcsioError
 from ..geometry.frames import Frame
 from ..values import Value
 from .document import Document, looks_binary
+from .lalr import paused_gc
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
@@ -128,11 +129,15 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     if looks_binary(doc.raw):
         raise UcsioError("binary or encrypted file: refusing to read or patch it", file=doc.path)
     vendor = detect_vendor(doc)
-    if vendor == "abb":
-        from . import rapid
-        return rapid.parse(doc, full=full)
-    from . import krl
-    return krl.parse(doc, full=full)
+    # The trees and frames of a file hold no reference cycles; the cyclic
+    # collector's passes over their growing heap made a long file's
+    # reading grow faster than the file (tests: benchmarks/bench_linear.py).
+    with paused_gc():
+        if vendor == "abb":
+            from . import rapid
+            return rapid.parse(doc, full=full)
+        from . import krl
+        return krl.parse(doc, full=full)
 
 
 def load(path: str | os.PathLike, full: bool = False) -> ControllerFile:

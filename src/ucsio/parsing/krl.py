@@ -54,7 +54,7 @@ from ..values import Value
 from . import regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines
-from .lalr import Rejected, Token, Tree
+from .lalr import Rejected, Token, Tree, paused_gc
 
 VENDOR = "kuka"
 START = ("file",)
@@ -997,6 +997,11 @@ def positions(doc: Document, full: bool = True) -> list[Position]:
     lines and the layout lines, the rest blanked. A position whose X, Y, Z,
     A, B or C is missing or not a number has no pose and a ``problem``
     (file:line:col) for whoever needs it."""
+    with paused_gc():
+        return _positions(doc, full)
+
+
+def _positions(doc: Document, full: bool) -> list[Position]:
     text = lf_lines(doc.text)
     if full:
         tree = _parse(doc, text, "file")

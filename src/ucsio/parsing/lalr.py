@@ -389,10 +389,16 @@ def _builder(name: str, expand1: bool, keep):
     keep = [(k, bool(x)) for k, x in keep]
 
     def build(children):
-        out = []
+        out: list = []
         for k, splice in keep:
             if splice:
-                out += children[k].children
+                if out:
+                    out += children[k].children
+                else:
+                    # a left-recursive list (_item* ...) grows by one child per
+                    # reduction: take its list over, never copy it (as Lark's
+                    # tree builder does), or a data list of n lines costs n²
+                    out = children[k].children
             else:
                 out.append(children[k])
         if expand1 and len(out) == 1:
