@@ -24,4 +24,4 @@ class CustomBuildHook(BuildHookInterface):
             sys.path.pop(0)
         out = Path(tempfile.mkdtemp(prefix="ucsio-tables-"))
         for path in grammar.write_tables(out):
-            build_data["force_include"][str(path)] = f"ucsio/grammars/{path.name}"
+            build_data["force_include"][path] = f"ucsio/grammars/{Path(path).name}"

@@ -784,3 +784,74 @@ def test_broken_system_declarations_are_refused_where_they_break(line, col):
 def test_partial_table_frame_is_still_a_warning():
     cf = both(doc_of(wrap("DECL FRAME BASE_DATA[2]\nBASE_DATA[1]={X 1,Y 2,Z 3,A 4,B 5}\n")))
     assert [(lint.code, lint.severity) for lint in cf.lints] == [("missing-component", "warning")]
+
+
+# -- element lines read without the parser (krl._plain_statements) ---------------------
+def _element_line():
+    st = pytest.importorskip("hypothesis").strategies
+    blank = st.sampled_from(["", " ", "  ", "\t", " \t"])
+    number = st.sampled_from(["0.0", "-1.00000", "1500.00", "+2", ".5", "-.6", "1.", "1E3",
+                              "-1.38059322E-5", "2.48660E+06", "1.0.5", "1e", "00", "-0"])
+    key = st.sampled_from(["X", "Y", "Z", "A", "B", "C", "x", "S", "E1", "X1", "$Q", "é"])
+    field = st.tuples(key, st.sampled_from([" ", "  ", "\t", ""]), number).map("".join)
+    struct = st.tuples(blank, st.lists(st.tuples(field, blank, blank), min_size=1, max_size=7),
+                       blank).map(lambda t: "{" + t[0] + ",".join(f + b1 + "" for f, b1, _ in t[1])
+                                  + t[2] + "}")
+    value = st.one_of(struct, st.sampled_from(['"pickBP"', '" "', '""', "#BASE", "# TCP",
+                                                "#none", "TRUE", "'A'", "{M -1,CM {X 0}}",
+                                                "{X 1,Y 2", "5", "NAME"]))
+    name = st.sampled_from(["BASE_DATA", "TOOL_DATA", "BASE_NAME", "TOOL_NAME", "BASE_TYPE",
+                            "TOOL_TYPE", "LOAD_DATA", "base_data", "REF_PT", "DECL", "ENUM"])
+    index = st.sampled_from(["[1]", "[3]", "[2,]", "[ 1]", "[01]", "[1,2]", "[]", "[33]"])
+    tail = st.sampled_from(["", " ", " ; note", ";", "; {X 1}", " junk"])
+    return st.tuples(name, index, blank, blank, value, tail).map(
+        lambda t: f"{t[0]}{t[1]}{t[2]}={t[3]}{t[4]}{t[5]}")
+
+
+def test_plain_element_lines_read_as_the_parser_reads_them():
+    """Lines the fast path reads straight from their words give the frames,
+    lints and tables the grammar's tree gives, whatever their spacing,
+    numbers and comments; a line it cannot read that way goes through the
+    parser, so a broken one fails as before."""
+    hypothesis = pytest.importorskip("hypothesis")
+    st = hypothesis.strategies
+    head = ("DEFDAT  $CONFIG\nDECL FRAME BASE_DATA[32]\nDECL FRAME TOOL_DATA[16]\n"
+            "DECL FRAME REF_PT[4]\nDECL CHAR BASE_NAME[32,24]\nDECL LOAD LOAD_DATA[16]\n")
+
+    def outline_through_the_parser(doc):
+        """The fast path without its shortcuts: every outline line parsed."""
+        text = krl._lines(doc)
+        tree = krl._parse(doc, krl.masked(text, krl.outline(text)), "file")
+        return krl._interpret(doc, krl._statements(tree, doc), tree)
+
+    def result(read, doc):
+        try:
+            return snapshot(read(doc))
+        except UcsioError as e:
+            return ("error", e.line, e.col, e.message)
+
+    @hypothesis.settings(max_examples=400, deadline=None, derandomize=True)
+    @hypothesis.given(st.lists(_element_line(), min_size=1, max_size=6))
+    def check(lines):
+        doc = doc_of(head + "\n".join(lines) + "\nENDDAT\n")
+        fast = result(krl.parse, doc)
+        assert fast == result(outline_through_the_parser, doc)
+        whole = result(krl.parse_whole, doc)
+        if fast[0] != "error" and whole[0] != "error":
+            assert fast == whole
+    check()
+
+
+def test_a_config_s_element_lines_are_read_without_the_parser():
+    """The 32 bases, names and types of a controller's $config.dat are read
+    from their words: the parser sees the rest (nested LOAD_DATA values)."""
+    text = wrap("DECL FRAME BASE_DATA[3]\n" + "".join(
+        f"BASE_DATA[{i}]={{X {i}.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0}}\n"
+        f'BASE_NAME[{i},]="b{i}"\nBASE_TYPE[{i}]=#BASE\n' for i in range(1, 4))
+        + "LOAD_DATA[1]={M -1.00000,CM {X 0.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0},J {X 0.0,Y 0.0,Z 0.0}}\n")
+    doc = doc_of(text)
+    plain, rest = krl._plain_statements(doc, doc.text, krl.outline(doc.text))
+    assert len(plain) == 9
+    assert [doc.text[s:e].split("[")[0] for s, e in rest if "[" in doc.text[s:e]] == \
+        ["DECL FRAME BASE_DATA", "LOAD_DATA"]
+    assert snapshot(krl.parse(doc)) == snapshot(krl.parse_whole(doc))

@@ -8,9 +8,11 @@ tests/test_fuzz.py, and the tree against Lark's."""
 from __future__ import annotations
 
 import json
+import marshal
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -19,7 +21,7 @@ from hypothesis import strategies as st
 import fuzzing
 from fuzzing import lark_tree, same_tree
 from conftest import FIXTURES, corpus_files
-from ucsio.parsing import grammar, krl, lalr, rapid
+from ucsio.parsing import cache, grammar, krl, lalr, rapid
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
@@ -227,16 +229,16 @@ def test_tables_cached_on_disk_rebuilt_when_damaged_and_optional(tmp_path, monke
 
     bare = tmp_path / "grammars"            # the grammars without shipped tables
     bare.mkdir()
-    for g in grammar.grammar_dir().glob("*.lark"):
+    for g in Path(grammar.grammar_dir()).glob("*.lark"):
         shutil.copy(g, bare / g.name)
     monkeypatch.setattr(grammar, "grammar_dir", lambda: bare)
     monkeypatch.setenv("UCSIO_CACHE_DIR", str(tmp_path / "cache"))
     first = grammar.tables("krl", krl.START)
     (path,) = (tmp_path / "cache").iterdir()
-    assert json.loads(path.read_bytes()) == first
-    path.write_bytes(b"{not json")
+    assert marshal.loads(path.read_bytes()) == first
+    path.write_bytes(b"{not marshal")
     assert grammar.tables("krl", krl.START) == first           # rebuilt
-    assert json.loads(path.read_bytes()) == first               # and rewritten
+    assert marshal.loads(path.read_bytes()) == first            # and rewritten
     blocked = tmp_path / "file"
     blocked.write_text("")
     monkeypatch.setenv("UCSIO_CACHE_DIR", str(blocked / "sub"))   # cannot be created
@@ -268,7 +270,7 @@ def test_reading_a_file_does_not_import_lark(tmp_path):
         out = subprocess.run([sys.executable, "-c", PROBE, *map(str, args)], env=env,
                              capture_output=True, text=True)
         seen.append(out.stdout.strip().splitlines()[-1] if out.stdout.strip() else out.stderr)
-    if any(grammar.grammar_dir().glob("*.tables.json")):     # an installed wheel ships them
+    if any(Path(grammar.grammar_dir()).glob("*.tables.marshal")):     # an installed wheel ships them
         assert seen == ["False"] * 6, seen
     else:       # a source checkout: Lark builds each grammar's tables once, then the cache
         assert seen == ["True", "False", "True", "False", "False", "False"], seen
@@ -286,7 +288,7 @@ def test_the_wheel_s_tables_are_found_beside_the_grammars(tmp_path, monkeypatch)
     assert abb._statement_parser() is grammar.parser("rapid", ("statements",))
     shipped = tmp_path / "grammars"
     shipped.mkdir()
-    for g in grammar.grammar_dir().glob("*.lark"):
+    for g in Path(grammar.grammar_dir()).glob("*.lark"):
         shutil.copy(g, shipped / g.name)
     written = grammar.write_tables(shipped)
     assert len(written) == len(grammar.BUILT)
@@ -304,10 +306,10 @@ def test_cache_dir_is_never_a_tilde_folder_in_the_current_folder(monkeypatch, tm
     monkeypatch.delenv("UCSIO_CACHE_DIR", raising=False)
     monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
     monkeypatch.setattr(os.path, "expanduser", lambda p: p)      # no home at all
-    where = grammar.cache_dir()
-    assert where.is_absolute() and str(where).startswith(tempfile.gettempdir())
+    where = cache.cache_dir()
+    assert os.path.isabs(where) and where.startswith(tempfile.gettempdir())
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
-    assert grammar.cache_dir() == tmp_path / "ucsio"
+    assert cache.cache_dir() == str(tmp_path / "ucsio")
 
 
 def test_a_lark_tree_converts_to_ours_node_for_node():

@@ -41,3 +41,53 @@ def test_light_commands_import_no_numpy_or_scipy(tmp_path):
 def test_solve_does_not_import_scipy():
     out = probe("solve", FIXTURES / "measurements" / "abb_wobj.csv", "--tcp", "1.5,-2,182.3")
     assert "scipy" not in out["heavy"]
+
+
+SLOW_TO_IMPORT = ("typing", "pathlib", "shutil", "json", "difflib", "lark", "numpy", "scipy",
+                  "dataclasses", "inspect", "hashlib", "tempfile")
+
+MODULES_PROBE = """
+import sys, io, contextlib
+from ucsio.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    main(sys.argv[1:])
+print(" ".join(sorted(m for m in sys.modules if m in %r)))
+""" % (SLOW_TO_IMPORT,)
+
+
+def test_listing_a_file_imports_nothing_it_does_not_need(tmp_path):
+    """issue 18 point 10: a cold `frames` in a plain venv was 2.7-4x a bare
+    python reading the file. typing, pathlib, shutil (argparse's help width),
+    json (the grammars' tables and the JSON printer), difflib (the patch
+    preview) each cost a cold start milliseconds; none is needed to list a
+    file's frames, and only json (the solution) to diff one frame."""
+    mod = FIXTURES / "abb" / "two_modules_crcrlf.prg"
+    dat = FIXTURES / "kuka" / "cell_config.dat"
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"frame": {"x": 101, "y": 200, "z": 300, "a": 0, "b": 0, "c": 0}}))
+    import os
+    env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
+    for args, allowed in ((["frames", mod], ()), (["frames", dat], ()),
+                          (["diff", mod, "--frame", "wobjA", "--measured", sol], ("json",))):
+        for _ in range(2):          # the first run builds the caches
+            res = subprocess.run([sys.executable, "-c", MODULES_PROBE, *map(str, args)],
+                                 capture_output=True, text=True, env=env, check=True)
+        imported = set(res.stdout.split())
+        assert imported <= set(allowed), (args, imported)
+
+
+def test_compiled_patterns_come_back_from_the_cache(tmp_path):
+    """The second run reads the compiled patterns from the disk cache and
+    lists the same; a damaged cache is ignored (and rebuilt)."""
+    import os
+    mod = FIXTURES / "abb" / "two_modules_crcrlf.prg"
+    env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
+    run = lambda: subprocess.run([sys.executable, "-m", "ucsio", "frames", str(mod), "--json"],  # noqa: E731
+                                 capture_output=True, text=True, env=env, check=True).stdout
+    first = run()
+    (store,) = (tmp_path / "cache").glob("re-*.marshal")
+    assert store.stat().st_size > 1000
+    assert run() == first
+    store.write_bytes(b"\x00not marshal at all")
+    assert run() == first
+    assert store.stat().st_size > 1000                 # rebuilt

@@ -27,6 +27,32 @@ COMMANDS = {
 }
 
 
+def _columns() -> int:
+    """The terminal's width as shutil.get_terminal_size finds it, without
+    importing shutil (and bz2, lzma, fnmatch with it): argparse builds a help
+    formatter for every option it is given, and each one asked shutil."""
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns if columns > 0 else 80
+
+
+class _Help(argparse.HelpFormatter):
+    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
+        super().__init__(prog, indent_increment, max_help_position,
+                         _columns() - 2 if width is None else width)
+
+
+class _RawHelp(_Help, argparse.RawDescriptionHelpFormatter):
+    pass
+
+
 class _Parser(argparse.ArgumentParser):
     """Options are never abbreviated (``--in-plac`` must not mean
     ``--in-place``); usage errors raise UsageError instead of exiting, so
@@ -34,6 +60,7 @@ class _Parser(argparse.ArgumentParser):
 
     def __init__(self, *args, **kwargs):
         kwargs["allow_abbrev"] = False
+        kwargs.setdefault("formatter_class", _Help)
         super().__init__(*args, **kwargs)
 
     def error(self, message: str):
@@ -78,7 +105,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
             continue
         module = importlib.import_module(f"ucsio.commands.{name}")
         p = sub.add_parser(name, help=help_text, description=module.__doc__,
-                           formatter_class=argparse.RawDescriptionHelpFormatter)
+                           formatter_class=_RawHelp)
         _accept_negative_lists(p)
         p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
         module.add_arguments(p)
@@ -142,6 +169,7 @@ def report_error(exc: UcsioError, want_json: bool) -> None:
 
 def entry() -> None:
     code = main()
+    regex.save_cache()      # patterns compiled for the first time, for the next run
     # Everything is written; skip the interpreter's teardown (freeing every
     # module and object), tens of milliseconds of a short command for nothing.
     try:

@@ -33,8 +33,7 @@ from ..output import emit_json, fmt, table
 
 
 def add_arguments(p) -> None:
-    import argparse
-    p.formatter_class = argparse.RawDescriptionHelpFormatter   # keep the forms on their lines
+    # the description's forms keep their lines: cli gives every subcommand a raw-description help
     p.add_argument("files", nargs="*", metavar="FILE",
                    help="FILE (with --frame), OLD NEW (two controller files, or two backup "
                         "folders or .zip archives), or git's seven arguments")
@@ -132,7 +131,7 @@ def _git(args) -> int:
 
 
 def _one_frame(args) -> int:
-    from ..api import read_solution
+    from ..method.solution import load_solution as read_solution
     from ..parsing.backup import load_one as load
     from ..review.diff import DEFAULT_TOLERANCE
     from ..review.compare import diff_frame

@@ -6,7 +6,6 @@ KUKA ``.dat`` and an ABB ``.mod`` go to the right parser.
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame
@@ -112,7 +111,7 @@ class ControllerFile:
 
 
 def detect_vendor(doc: Document) -> str:
-    suffix = Path(doc.path).suffix.lower()
+    suffix = os.path.splitext(doc.path)[1].lower()
     if suffix in ABB_SUFFIXES:
         return "abb"
     if suffix in KUKA_SUFFIXES:

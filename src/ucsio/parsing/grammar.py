@@ -4,7 +4,7 @@ The grammars are data (grammars/*.lark at the top of the repository, copied
 into the wheel as ucsio/grammars). Lark compiles each into LALR tables: when
 the wheel is built (hatch_build.py ships them beside the grammars), or in a
 source checkout once per machine (``tables`` keeps them in a disk cache);
-JSON keyed by the grammar's text. So a command that reads a file never
+marshal files keyed by the grammar's text. So a command that reads a file never
 imports Lark. Only a syntax
 error does: ``parse`` asks Lark itself for the positioned message, so what
 the user reads is Lark's diagnosis of exactly the text we rejected.
@@ -12,20 +12,22 @@ the user reads is Lark's diagnosis of exactly the text we rejected.
 from __future__ import annotations
 
 import functools
-import json
 import os
-import zlib
-from pathlib import Path
 
 from . import lalr
+from .cache import cache_dir, write_cache
+
+# pathlib and json cost a cold command 5-8 ms of imports: paths here are
+# strings, and the tables are stored as marshal.
 
 
-def grammar_dir() -> Path:
-    package = Path(__file__).resolve().parent.parent     # .../ucsio
-    inside = package / "grammars"                        # installed wheel
-    if inside.is_dir():
+@functools.lru_cache(maxsize=None)
+def grammar_dir() -> str:
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))   # .../ucsio
+    inside = os.path.join(package, "grammars")                               # installed wheel
+    if os.path.isdir(inside):
         return inside
-    return package.parent.parent / "grammars"            # source checkout / editable install
+    return os.path.join(os.path.dirname(os.path.dirname(package)), "grammars")  # a checkout
 
 
 class SyntaxFailure(Exception):
@@ -72,78 +74,64 @@ BUILT = (("rapid", ("file", "data_decl")), ("rapid", ("statements",)), ("krl", (
 def tables(name: str, start: tuple[str, ...]) -> dict:
     """The LALR tables: shipped beside the grammars (an installed wheel), or
     from the disk cache, or (a source checkout's first run, a changed
-    grammar) from Lark. The cache is written atomically; where it cannot be
-    written the tables are simply rebuilt next time."""
-    key = _key(name, start)
-    shipped = grammar_dir() / f"{name}-{key}.tables.json"
-    cached = cache_dir() / f"{name}-{key}.json"
+    grammar) from Lark. Stored as marshal (format 4, which every Python since
+    3.4 reads): it loads several times faster than JSON and needs no import.
+    Each file holds the grammar text it was built from, and is used only for
+    exactly that text (no hash to compute, nothing stale kept beside it). The
+    cache is written atomically; where it cannot be written the tables are
+    simply rebuilt next time."""
+    import marshal
+
+    grammar = _grammar_text(name)
+    stem = _stem(name, start)
+    shipped = os.path.join(grammar_dir(), f"{stem}.tables.marshal")
+    cached = os.path.join(cache_dir(), f"{stem}.marshal")
     for path in (shipped, cached):
         try:
-            got = json.loads(path.read_bytes())
-            if got.get("format") == lalr.FORMAT:
+            with open(path, "rb") as fh:
+                got = marshal.loads(fh.read())
+            if isinstance(got, dict) and got.get("format") == lalr.FORMAT \
+                    and got.get("grammar") == grammar:
                 return got
-        except (OSError, ValueError, AttributeError):
+        except (OSError, ValueError, EOFError, TypeError):
             pass
     data = _from_lark(name, start)
-    _write_cache(cached, data.encode())
-    return json.loads(data)         # as read back from disk: tuples are lists
+    write_cache(cached, marshal.dumps(data, 4))
+    return data
 
 
-def _key(name: str, start: tuple[str, ...]) -> str:
-    """What the tables depend on: their format, the start symbols and the
-    grammar's text. (hashlib would cost a cold start 6 ms, it loads OpenSSL;
-    a CRC and the length tell an edited grammar from the one tabled.)"""
-    text = (grammar_dir() / f"{name}.lark").read_text(encoding="utf-8")
-    data = f"{lalr.FORMAT}\0{','.join(start)}\0{text}".encode()
-    return f"{zlib.crc32(data):08x}{len(data):x}"
+def _grammar_text(name: str) -> str:
+    with open(os.path.join(grammar_dir(), f"{name}.lark"), encoding="utf-8") as fh:
+        return fh.read()
 
 
-def write_tables(folder: Path) -> list[Path]:
+def _stem(name: str, start: tuple[str, ...]) -> str:
+    """A parser's file name: the grammar and its start symbols."""
+    return "-".join((name, *start))
+
+
+def write_tables(folder) -> list[str]:
     """Every parser's tables, built with Lark, written into ``folder`` under
     the names ``tables`` looks for beside the grammars."""
+    import marshal
+
     written = []
     for name, start in BUILT:
-        path = Path(folder) / f"{name}-{_key(name, start)}.tables.json"
-        path.write_text(_from_lark(name, start), encoding="utf-8")
+        path = os.path.join(folder, f"{_stem(name, start)}.tables.marshal")
+        with open(path, "wb") as fh:
+            fh.write(marshal.dumps(_from_lark(name, start), 4))
         written.append(path)
     return written
 
 
-def _from_lark(name: str, start: tuple[str, ...]) -> str:
-    """The tables as Lark builds them, as the JSON text stored on disk."""
-    return json.dumps(lalr.tables_from_lark(lark_parser(name, start)), separators=(",", ":"))
+def _from_lark(name: str, start: tuple[str, ...]) -> dict:
+    """The tables as Lark builds them, in plain lists and dicts (through
+    JSON: the same data whichever way it was stored)."""
+    import json
 
-
-def cache_dir() -> Path:
-    where = os.environ.get("UCSIO_CACHE_DIR")
-    if where:
-        return Path(where)
-    base = os.environ.get("XDG_CACHE_HOME")
-    if not base:
-        home = os.path.expanduser("~")
-        if home.startswith("~"):        # no home to expand: never a "~" folder in the cwd
-            import tempfile
-            user = os.getuid() if hasattr(os, "getuid") else "user"
-            return Path(tempfile.gettempdir()) / f"ucsio-cache-{user}"
-        base = os.path.join(home, ".cache")
-    return Path(base) / "ucsio"
-
-
-def _write_cache(path: Path, data: bytes) -> None:
-    import tempfile
-
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as f:
-                f.write(data)
-            os.replace(tmp, path)
-        except BaseException:
-            os.unlink(tmp)
-            raise
-    except OSError:
-        pass            # a read-only home: correct, only slower
+    data = json.loads(json.dumps(lalr.tables_from_lark(lark_parser(name, start))))
+    data["grammar"] = _grammar_text(name)      # what these tables are of
+    return data
 
 
 @functools.lru_cache(maxsize=None)
@@ -152,8 +140,7 @@ def lark_parser(name: str, start: tuple[str, ...]):
     words the syntax errors."""
     from lark import Lark
 
-    path = grammar_dir() / f"{name}.lark"
-    return Lark(path.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
+    return Lark(_grammar_text(name), parser="lalr", lexer="contextual",
                 start=list(start), propagate_positions=False, maybe_placeholders=False,
                 cache=True)
 

@@ -46,7 +46,6 @@ from __future__ import annotations
 
 import functools
 import re
-from typing import Any
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
@@ -55,6 +54,10 @@ from . import regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines
 from .lalr import Rejected, Token, Tree, paused_gc
+
+TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
+if TYPE_CHECKING:
+    from typing import Any
 
 VENDOR = "kuka"
 START = ("file",)
@@ -247,18 +250,113 @@ def _shared_values(text: str, spans: list[tuple[int, int]]):
     return placeholders, shared
 
 
+# An element line as KSS writes it: NAME[n]= or NAME[n,]= and a flat
+# structure of numbers, a string or an #ENUM value, then at most a comment.
+# Most of a $config.dat is such lines (32 bases, their names and types, 16
+# tools...): read straight from their words, as the grammar reads them, they
+# cost a regular-expression match instead of twenty tokens through the
+# parser. Anything else (nested structures, blanks inside brackets, other
+# value kinds, a line the grammar would refuse) goes through the parser.
+_B = r"[ \t\f\r]*+"
+_PLAIN_NUMBER = r"[+-]?+(?:[0-9]++(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][+-]?+[0-9]++)?+"
+_PLAIN_FIELD = r"[A-Za-z_$][A-Za-z0-9_$]*[ \t\f\r]+" + _PLAIN_NUMBER
+_PLAIN_LINE = regex.lazy(
+    r"(?P<name>[A-Za-z_$][A-Za-z0-9_$]*)\[(?P<index>[0-9]{1,9}),?\]" + _B + "=" + _B
+    + r"(?P<value>\{" + _B + _PLAIN_FIELD + "(?:" + _B + "," + _B + _PLAIN_FIELD + ")*" + _B
+    + r"\}|\"[^\"\n]*\"|#" + _B + r"[A-Za-z_$][A-Za-z0-9_$]*)" + _B + r"(?:;[^\n]*)?\Z")
+_PLAIN_FIELDS = regex.lazy(r"(?P<key>[A-Za-z_$][A-Za-z0-9_$]*)[ \t\f\r]+(?P<number>" + _PLAIN_NUMBER + ")")
+
+
+def _plain_statements(doc: Document, text: str, spans):
+    """(statements read from their words, the spans left for the parser):
+    the outline's element lines that _PLAIN_LINE matches, each made into
+    the statement and value the parser would give."""
+    made: list[_Stmt] = []
+    rest = []
+    match = _PLAIN_LINE.match
+    layout = None
+    for s, e in spans:
+        m = match(text, s + len(text[s:e]) - len(text[s:e].lstrip(" \t\f\r")), e)
+        if m is None or m.group("name").upper() in _KEYWORDS:
+            rest.append((s, e))
+            continue
+        if layout is None:          # never a line that decides the file's layout
+            layout = set(_layout_lines(text, "\n" + text))
+        if (s, e) in layout:
+            rest.append((s, e))
+            continue
+        start = m.start()
+        st = _Stmt()
+        st.kind, st.delta, st.start, st.line = "assign", 0, start, doc.line_of(start)
+        st.name = Token("NAME", m.group("name"), start, m.end("name"))
+        st.index = [int(m.group("index"))]
+        vs, ve = m.span("value")
+        first = text[vs]
+        if first == "{":
+            fields: dict[str, Any] = {}
+            dups = []
+            for f in _PLAIN_FIELDS.finditer(text, vs, ve):
+                key = f.group("key").upper()
+                if key in fields:
+                    dups.append((key, f.start()))
+                number = f.group("number")
+                fields[key] = (_Name(f.group("key"), f.start()),
+                               _Val("number", float(number), f.start("number"), f.end(), number))
+            st.value = _Val("struct", fields, vs, ve)
+            st.value.dups = dups
+        elif first == '"':
+            st.value = _Val("string", text[vs + 1:ve - 1], vs, ve)
+        else:
+            st.value = _Val("enum", "#" + text[vs + 1:ve].strip().upper(), vs, ve)
+        made.append(st)
+    return made, rest
+
+
 def _shared_parse(doc: Document, text: str, spans):
     """(statements, tree) of the masked text, the parser reading each repeated
     value once (_shared_values); None when that is not possible here (a
     syntax error, or a shared value not read as an assignment): the caller
-    then parses the masked text as it is, with its exact error."""
+    then parses the masked text as it is, with its exact error.
+
+    A later line with a repeated value whose left-hand side is a plain
+    ``NAME[n]`` or ``NAME[n,]`` (a config file's 32 unset bases) is not
+    parsed at all: its statement is made here from its words, the value the
+    first line's; others are parsed with the value as a placeholder 0."""
     placeholders, shared = _shared_values(text, spans)
     if not shared:
         return None
-    mtext = masked(text, spans)
+    layout = set(_layout_lines(text, "\n" + text))
+    line_of = {s: (s, e) for s, e in spans}
+    made: list[_Stmt] = []
+    blank: list[tuple[int, int]] = []
+    for s, e in spans:
+        if (s, e) in layout:
+            continue
+        first = text[s:e].lstrip(" \t\f\r")
+        start = e - len(first)
+        if start not in shared:
+            continue
+        m = _PLAIN_LHS.match(text, start, e)
+        if m is None or m.group("name").upper() in _KEYWORDS:
+            continue
+        src, delta, pos = shared[start]
+        if m.end() != pos:
+            continue
+        st = _Stmt()
+        st.kind, st.delta, st.start, st.line = "assign", delta, start, doc.line_of(start)
+        st.name = Token("NAME", m.group("name"), start, m.end("name"))
+        st.index = None if m.group("index") is None else [int(m.group("index"))]
+        st.value = src              # the first line's statement start, resolved below
+        made.append(st)
+        blank.append(line_of[s])
+        del shared[start]
+    skip = set(blank)
+    mtext = masked(text, [sp for sp in spans if sp not in skip])
     pieces = []
     pos = 0
     for s, e in placeholders:
+        if s < pos or s >= len(mtext) or mtext[s:e] != text[s:e]:
+            continue                # its line was blanked (made above)
         pieces.append(mtext[pos:s])
         pieces.append("0".ljust(e - s))
         pos = e
@@ -277,7 +375,22 @@ def _shared_parse(doc: Document, text: str, spans):
             return None
         st.value = first.value
         st.delta = delta
+    for st in made:
+        first = assigns.get(st.value)
+        if first is None:
+            return None
+        st.value = first.value
+    if made:
+        stmts = sorted(stmts + made, key=lambda st: st.start)
     return stmts, tree
+
+
+# a later line's left-hand side made into a statement without the parser
+# (_shared_parse): NAME, NAME[n], NAME[n,] and the "=", as the grammar reads them
+_PLAIN_LHS = regex.lazy(r"(?P<name>[A-Za-z_$][A-Za-z0-9_$]*)(?:\[(?P<index>[0-9]{1,9}),?\])?[ \t\f\r]*=")
+# words the grammar reads as keywords, never as an assignment's name
+_KEYWORDS = {"DECL", "GLOBAL", "CONST", "STRUC", "ENUM", "SIGNAL", "EXT", "EXTP", "EXTFCT",
+             "EXTFCTP", "CHANNEL", "IMPORT", "DEFDAT", "ENDDAT", "PUBLIC", "TRUE", "FALSE"}
 
 
 def masked(text: str, spans: list[tuple[int, int]]) -> str:
@@ -441,6 +554,8 @@ def _value(node, delta: int = 0, depth: int = 0) -> _Val:
     parsed once for several lines with the same text, see _shared_values).
     Deeper than MAX_NESTING raises TooDeep (a clear error, not Python's
     RecursionError)."""
+    if isinstance(node, _Val):          # read without the parser (_plain_statements)
+        return node
     if depth > MAX_NESTING:
         raise TooDeep((node.start_pos if isinstance(node, str) else node.children[0].start_pos)
                        + delta)
@@ -568,12 +683,15 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             return _whole(doc, text, lark_first=True)
     # the frame lines and the layout lines (outline), the rest blanked out
     spans = outline(text)
-    got = _shared_parse(doc, text, spans)
+    plain, rest = _plain_statements(doc, text, spans)
+    got = _shared_parse(doc, text, rest)
     if got is None:
-        tree = _parse(doc, masked(text, spans), "file")
+        tree = _parse(doc, masked(text, rest), "file")
         stmts = _statements(tree, doc)
     else:
         stmts, tree = got
+    if plain:
+        stmts = sorted(stmts + plain, key=lambda st: st.start)
     return _interpret(doc, stmts, tree)
 
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import bisect
 import functools
+import os
 import re
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
@@ -52,7 +53,8 @@ def _grammar_terminal(name: str) -> str:
     """A terminal's regex as grammars/rapid.lark writes it: the outline skips
     routines and records with the grammar's own patterns, so the two paths
     cannot drift apart."""
-    text = (grammar_dir() / "rapid.lark").read_text(encoding="utf-8")
+    with open(os.path.join(grammar_dir(), "rapid.lark"), encoding="utf-8") as fh:
+        text = fh.read()
     return re.search(rf"^{name}(?:\.\d+)?: /(.*)/i$", text, re.M).group(1)
 
 

@@ -38,9 +38,105 @@ PATTERNS: list[str] = []
 
 def compile(pattern: str, flags: int = 0) -> re.Pattern:
     """``re.compile``, with possessive quantifiers and atomic groups rewritten
-    where this Python's ``re`` gets them wrong."""
+    where this Python's ``re`` gets them wrong, through the compiled-pattern
+    cache (below)."""
     PATTERNS.append(pattern)
-    return re.compile(pattern if NATIVE else portable(pattern), flags)
+    return _compiled(pattern if NATIVE else portable(pattern), flags)
+
+
+# -- compiled patterns, cached -------------------------------------------------------
+# re compiles a pattern in pure Python (its parser and code generator), and
+# the C engine then runs a list of opcodes. For a command that lists one
+# file's frames, compiling the outline scanner and the grammar's lexer was a
+# quarter of all it did. The opcodes depend only on the pattern, its flags
+# and the Python that compiled them (_sre.MAGIC, the version): they are kept
+# in the disk cache, one file per Python, and given back to _sre.compile,
+# which validates them. Where any of this is not as expected (another
+# Python, another re), patterns are simply compiled by re.
+_store: dict | None = None
+_dirty = False
+
+
+def _store_path() -> str | None:
+    import _sre
+
+    from .cache import cache_dir
+
+    tag = getattr(sys.implementation, "cache_tag", None)
+    if sys.implementation.name != "cpython" or not tag or not hasattr(_sre, "compile"):
+        return None
+    return os.path.join(cache_dir(), f"re-{tag}-{sys.version_info[2]}-{_sre.MAGIC}.marshal")
+
+
+def _load_store() -> dict:
+    global _store
+    import marshal
+
+    _store = {}
+    try:
+        path = _store_path()
+        if path is not None:
+            with open(path, "rb") as fh:
+                got = marshal.loads(fh.read())
+            if isinstance(got, dict):
+                _store = got
+    except (OSError, ValueError, EOFError, TypeError):
+        pass
+    return _store
+
+
+def _compiled(source: str, flags: int) -> re.Pattern:
+    global _dirty
+    store = _load_store() if _store is None else _store
+    key = (source, int(flags))
+    got = store.get(key)
+    if got is not None:
+        import _sre
+        try:
+            return _sre.compile(source, *got)
+        except Exception:       # noqa: BLE001 - a stale or damaged entry: compile anew
+            pass
+    try:
+        from re import _compiler, _parser
+
+        parsed = _parser.parse(source, flags)
+        code = _compiler._code(parsed, flags)
+        groupindex = dict(parsed.state.groupdict)
+        indexgroup = [None] * parsed.state.groups
+        for name, i in groupindex.items():
+            indexgroup[i] = name
+        # plain ints: the opcodes are int subclasses, which marshal refuses
+        args = (int(flags | parsed.state.flags), [int(c) for c in code],
+                parsed.state.groups - 1, groupindex, tuple(indexgroup))
+        import _sre
+        compiled = _sre.compile(source, *args)
+    except Exception:           # noqa: BLE001 - not this re's internals: as re does it
+        return re.compile(source, flags)
+    store[key] = args
+    if not _dirty:
+        import atexit
+        atexit.register(save_cache)     # the command line saves before its os._exit
+    _dirty = True
+    return compiled
+
+
+def save_cache() -> None:
+    """Write the compiled patterns learned in this run (the command line
+    calls this before it exits; ``atexit`` for everyone else)."""
+    global _dirty
+    if not _dirty or _store is None:
+        return
+    _dirty = False
+    import marshal
+
+    from .cache import write_cache
+
+    try:
+        path = _store_path()
+        if path is not None:
+            write_cache(path, marshal.dumps(_store, 4))
+    except (OSError, ValueError):
+        pass
 
 
 class lazy:
@@ -57,7 +153,7 @@ class lazy:
     def __getattr__(self, name: str):
         compiled = self._compiled
         if compiled is None:
-            compiled = self._compiled = re.compile(
+            compiled = self._compiled = _compiled(
                 self._source if NATIVE else portable(self._source), self._flags)
         return getattr(compiled, name)
 

@@ -9,10 +9,13 @@ that changed but cannot be read is listed with its error (exit 2).
 """
 from __future__ import annotations
 
-from typing import Any
 
 from ..errors import UcsioError
 from ..parsing.backup import Failure, Source, expand
+
+TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
+if TYPE_CHECKING:
+    from typing import Any
 
 
 def _sources(path: str) -> list[Source]:

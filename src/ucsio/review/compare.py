@@ -13,9 +13,7 @@
 """
 from __future__ import annotations
 
-import difflib
 import os
-from typing import Any
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
@@ -27,6 +25,9 @@ from .unset import is_set, warning as unset_warning
 from .patch import (_close32, measured_in_parent, object_frame_basis, poses_equal,
                     reference_problem, resolve_name)
 
+TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
+if TYPE_CHECKING:
+    from typing import Any
 
 
 def _is_devnull(path: str) -> bool:
@@ -302,6 +303,8 @@ def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]
 
 
 def _unified(a: list[str], b: list[str], old_label: str, new_label: str) -> str:
+    import difflib
+
     return "\n".join(difflib.unified_diff(a, b, old_label, new_label, lineterm="")) + "\n"
 
 
@@ -333,6 +336,8 @@ def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None,
     reviewer sees its text change rather than nothing)."""
     a, b = _lines(old), _lines(new)
     fa, fb = _frame_lines(old, reported), _frame_lines(new, reported)
+    import difflib
+
     matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
     for tag, i1, i2, j1, j2 in matcher.get_opcodes():
         if tag == "equal":

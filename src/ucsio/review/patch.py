@@ -33,14 +33,11 @@ temporary file left) if the source file changed on disk since it was read.
 from __future__ import annotations
 
 import bisect
-import difflib
 import itertools
 import math
 import os
 import re
 import struct
-from pathlib import Path
-from typing import Any
 
 from ..errors import UcsioError
 from ..files import atomic_write, write_target
@@ -51,6 +48,10 @@ from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
 from ..values import Value
 from .names import find_frame
+
+TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
+if TYPE_CHECKING:
+    from typing import Any
 
 # Written precision (decimals) and half a step: what "unchanged" means.
 TRANS_DECIMALS = 3
@@ -400,25 +401,22 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
     storage = str(frame.info.get("storage") or "").upper()
     if frame.vendor != "abb" or "PERS" not in storage.split() or "LOCAL" in storage.split():
         return []
-    here = Path(frame.file)
+    here = frame.file
+    folder = os.path.dirname(here)
     try:
-        siblings = sorted(p for p in here.parent.iterdir()
-                          if p.suffix.lower() in ABB_SUFFIXES and p.is_file())
+        siblings = sorted(os.path.join(folder, n) if folder else n
+                          for n in os.listdir(folder or ".")
+                          if os.path.splitext(n)[1].lower() in ABB_SUFFIXES
+                          and os.path.isfile(os.path.join(folder or ".", n)))
     except OSError:
         return []
     if load is None:
         from ..parsing.controller import load
     found = []
     key = frame.name.casefold()
-    try:
-        here_resolved = here.resolve()
-    except OSError:
-        return []
+    here_resolved = os.path.realpath(here)
     for p in siblings:
-        try:
-            if p.resolve() == here_resolved:
-                continue
-        except OSError:
+        if os.path.realpath(p) == here_resolved:
             continue
         if not _may_declare(p, frame.name):
             continue
@@ -427,17 +425,17 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
         except Exception as exc:  # noqa: BLE001 - a sibling is only consulted: never fatal
             why = exc.message if isinstance(exc, UcsioError) else f"{type(exc).__name__}: {exc}"
             if warnings is not None:
-                warnings.append(f"could not read sibling module {p.name} ({why}); "
+                warnings.append(f"could not read sibling module {os.path.basename(p)} ({why}); "
                                 "it may declare the same PERS")
             continue
         for f in other.frames:
             if f.name.casefold() == key and f.type == frame.type:
                 same = poses_equal(frame.pose, f.pose)
-                found.append({"file": str(p), "line": f.line, "same_value": same})
+                found.append({"file": p, "line": f.line, "same_value": same})
     return found
 
 
-def _may_declare(path: Path, name: str) -> bool:
+def _may_declare(path: str, name: str) -> bool:
     """Whether a sibling module can declare ``name`` at all: its bytes hold
     the data's name as a word, in any case (RAPID names are ASCII, so this holds in
     any ASCII-compatible encoding). Only those are parsed: a backup folder's
@@ -447,7 +445,8 @@ def _may_declare(path: Path, name: str) -> bool:
     import re
 
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:
+            raw = fh.read()
     except OSError:
         return True                         # let the loader say what is wrong
     if looks_binary(raw):
@@ -553,6 +552,8 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     while hi < limit - lo and a[-1 - hi] == b[-1 - hi]:
         hi += 1
     lo, hi = max(0, lo - n), max(0, hi - n)
+    import difflib          # only where a diff is shown
+
     out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], f"a/{label}", f"b/{label}",
                                n=n, lineterm="")
     shift = top + lo
@@ -642,7 +643,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     if check_siblings:
         shared = shared_declarations(frame, warnings, load=load)
         if shared:
-            names = "; ".join(f"{Path(s['file']).name}:{s['line']} "
+            names = "; ".join(f"{os.path.basename(s['file'])}:{s['line']} "
                               f"({'same value' if s['same_value'] else 'different value'})"
                               for s in shared)
             msg = (f"{frame.name}: this PERS is also declared in {names}; RAPID shares one "
