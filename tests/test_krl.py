@@ -830,7 +830,7 @@ def test_plain_element_lines_read_as_the_parser_reads_them():
         except UcsioError as e:
             return ("error", e.line, e.col, e.message)
 
-    @hypothesis.settings(max_examples=400, deadline=None, derandomize=True)
+    @hypothesis.settings(max_examples=200, deadline=None, derandomize=True)
     @hypothesis.given(st.lists(_element_line(), min_size=1, max_size=6))
     def check(lines):
         doc = doc_of(head + "\n".join(lines) + "\nENDDAT\n")
