@@ -109,7 +109,11 @@ def _shapes():
 @pytest.mark.parametrize("shape", ["rapid many PERS", "rapid blanks around decl",
                                    "rapid long word at EOF", "rapid unterminated decl, blanks",
                                    "rapid comment of numbers", "rapid dotted digits",
-                                   "krl long word", "krl spaces lines"])
+                                   "krl long word", "krl spaces lines",
+                                   # issue 18: quadratic until fixed
+                                   "rapid CONST long word", "rapid VAR long digits",
+                                   "rapid routine of blanks", "krl many & lines",
+                                   "krl no DEFDAT, many lines"])
 def test_hostile_shapes_take_linear_time(shape):
     """Shapes that once took quadratic time (a 40 KB file ~20 s, 80 KB over
     90 s). At 200 KB a quadratic pass would take minutes; linear is well under
