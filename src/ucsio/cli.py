@@ -127,13 +127,14 @@ _NEGATIVE_LIST = regex.lazy(r"^-\d*\.?\d+([eE][-+]?\d+)?([,;][-+\d.eE]*)*$")
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else [str(a) for a in argv]
-    want_json = "--json" in argv           # before parsing: a usage error is JSON too
+    want_json = _wants_json(argv)          # before parsing: a usage error is JSON too
     try:
         parser = build_parser(argv[0] if argv and argv[0] in COMMANDS else None)
         args, extras = parser.parse_known_args(argv)
         if extras:
             _refuse_unknown(parser, args, extras)
-        want_json = bool(getattr(args, "json", False))
+        want_json = bool(getattr(args, "json", False)) \
+            or getattr(args, "output_format", None) == "json"
         return int(args._module.run(args) or 0)
     except UcsioError as exc:
         report_error(exc, want_json)
@@ -156,6 +157,12 @@ def main(argv: list[str] | None = None) -> int:
                                 f"command and its input; UCSIO_DEBUG=1 shows where): "
                                 f"{type(exc).__name__}: {exc}"), want_json)
         return 2
+
+
+def _wants_json(argv: list[str]) -> bool:
+    """--json, or check's --output-format json (its other spelling)."""
+    return "--json" in argv or "--output-format=json" in argv or any(
+        a == "--output-format" and b == "json" for a, b in zip(argv, argv[1:]))
 
 
 def report_error(exc: UcsioError, want_json: bool) -> None:

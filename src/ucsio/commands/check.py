@@ -8,7 +8,16 @@ value another module gives) does not fail the check.
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
 .prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
 that cannot be read (an encrypted module, a syntax error) is listed with its
-error and every other file is still checked; exit 2 at the end."""
+error and every other file is still checked; exit 2 at the end.
+
+--output-format FORMAT (ruff's names) prints the findings for a person or a
+CI system: full (the default: each file, its findings, a total), concise
+(file:line:col: severity: code: message, for editors' problem matchers),
+json (= --json), json-lines, github (workflow commands: annotations on a
+pull request), gitlab (a Code Quality report) or sarif (SARIF 2.1.0, for
+code scanning). Every format lists lints, failed round trips and the files
+not read (codes syntax-error, unreadable, round-trip); the exit status is
+the same in all."""
 from __future__ import annotations
 
 from ..output import emit_json
@@ -19,6 +28,10 @@ def add_arguments(p) -> None:
                    help="RAPID module, KRL .dat file, backup folder or .zip archive")
     p.add_argument("--ignore", action="append", default=[], metavar="CODE,...",
                    help="silence these lint codes (comma-separated, repeatable)")
+    from ..findings import FORMATS
+    p.add_argument("--output-format", choices=FORMATS, default=None, metavar="FORMAT",
+                   help="how findings are printed: " + ", ".join(FORMATS)
+                   + " (default full; --json is --output-format json)")
 
 
 def round_trip(cf) -> bool:
@@ -47,30 +60,64 @@ def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
 
 def ignored_codes(values: list[str]) -> frozenset:
     """--ignore a,b --ignore c -> {a, b, c}; an unknown code is a usage error
-    with the nearest real one suggested (a typo must not silence nothing)."""
-    from ..parsing.controller import LINT_CODES
+    with the nearest real one suggested (a typo must not silence nothing).
+    A retired code is accepted with a note (it silences nothing now); a file
+    that was not read or did not round-trip cannot be silenced."""
+    import sys
+    from ..parsing.controller import FILE_CODES, LINT_CODES, RETIRED
     from ..errors import UsageError, did_you_mean
     codes = {c.strip().lower() for v in values for c in v.split(",") if c.strip()}
     for c in sorted(codes):
-        if c not in LINT_CODES:
+        if c in FILE_CODES:
+            raise UsageError(f"ucsio check: --ignore: {c!r} cannot be ignored: it is not a lint "
+                             "but a file that was not checked")
+        if c in RETIRED:
+            print(f"ucsio check: --ignore: {c!r} is retired ({RETIRED[c]}); it silences nothing",
+                  file=sys.stderr)
+        elif c not in LINT_CODES:
             hint = did_you_mean(c, LINT_CODES) or " (the README lists the codes)"
             raise UsageError(f"ucsio check: --ignore: no lint code {c!r}{hint}")
     return frozenset(codes)
+
+
+def output_format(args) -> str:
+    """--json is --output-format json; given with another format it is a
+    usage error (which of the two was meant cannot be guessed)."""
+    fmt = getattr(args, "output_format", None)
+    if args.json and fmt not in (None, "json"):
+        from ..errors import UsageError
+        raise UsageError(f"ucsio check: --json is --output-format json: it cannot go with "
+                         f"--output-format {fmt}")
+    return "json" if args.json else fmt or "full"
 
 
 def run(args) -> int:
     from ..output import paint
     from . import load_inputs, report_failures
 
+    fmt = output_format(args)
     ignore = ignored_codes(args.ignore)
-    parsed, errors = load_inputs(args.files, full=True)
+    if fmt in ("full", "json"):
+        # one plain file that cannot be read is SPEC's single error, as ever
+        parsed, errors = load_inputs(args.files, full=True)
+    else:
+        # the formats CI reads list it as a finding, like any file not read
+        from ..parsing.backup import load_all
+        parsed, errors = load_all(args.files, full=True)
     results = [check_parsed(cf, ignore) for _, cf in parsed]
     bad = any(not r["round_trip"] or any(l["severity"] != "info" for l in r["lints"])
               for r in results)
     status = 2 if errors else 1 if bad else 0
-    if args.json:
-        emit_json({"files": results, "errors": [e.as_dict() for e in errors],
+    if fmt == "json":
+        from ..findings import error_code
+        emit_json({"files": results,
+                   "errors": [{**e.as_dict(), "code": error_code(e)} for e in errors],
                    "ok": status == 0})
+        report_failures(errors)
+        return status
+    if fmt != "full":
+        from ..findings import collect, render
+        render(fmt, collect(results, errors))
         report_failures(errors)
         return status
     for r in results:

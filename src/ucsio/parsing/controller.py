@@ -50,6 +50,22 @@ LINT_CODES = {
     "base-not-world": "a base on an external kinematic: not relative to world",
 }
 
+# Findings about a whole file, not a lint: every output format of check names
+# them by these codes. They fail the check and cannot be --ignored.
+FILE_CODES = {
+    "syntax-error": "error: a file ucsio cannot parse (the error names its line and column); nothing in it is checked",
+    "unreadable": "error: an input that cannot be read at all: missing, not a regular file, binary or encrypted, "
+                  "a broken archive, a folder without controller files",
+    "round-trip": "error: the bytes ucsio would write for the unedited file are not the file's bytes, "
+                  "or a frame number's span does not hold that number: a patch could change more than its numbers",
+}
+
+# A code never changes meaning between releases. A code check no longer
+# reports moves here (code -> the release that retired it, and why) and stays
+# reserved: it is never given to another finding. `--ignore` still accepts
+# it, so a CI configuration written for an older ucsio keeps working.
+RETIRED: dict[str, str] = {}
+
 
 class Lint(Value):
     """A finding of ``check``. A ``warning`` fails the check (exit 1); an
