@@ -85,7 +85,7 @@ def test_compiled_patterns_come_back_from_the_cache(tmp_path):
     run = lambda: subprocess.run([sys.executable, "-m", "ucsio", "frames", str(mod), "--json"],  # noqa: E731
                                  capture_output=True, text=True, env=env, check=True).stdout
     first = run()
-    (store,) = (tmp_path / "cache").glob("re-*.marshal")
+    (store,) = (tmp_path / "cache").glob("re2-*.marshal")
     assert store.stat().st_size > 1000
     assert run() == first
     store.write_bytes(b"\x00not marshal at all")

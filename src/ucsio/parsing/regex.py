@@ -63,9 +63,10 @@ def _store_path() -> str | None:
     from .cache import cache_dir
 
     tag = getattr(sys.implementation, "cache_tag", None)
-    if sys.implementation.name != "cpython" or not tag or not hasattr(_sre, "compile"):
+    if sys.implementation.name != "cpython" or not tag or not hasattr(_sre, "compile") \
+            or _sre.CODESIZE != 4:
         return None
-    return os.path.join(cache_dir(), f"re-{tag}-{sys.version_info[2]}-{_sre.MAGIC}.marshal")
+    return os.path.join(cache_dir(), f"re2-{tag}-{sys.version_info[2]}-{_sre.MAGIC}.marshal")
 
 
 def _load_store() -> dict:
@@ -93,7 +94,12 @@ def _compiled(source: str, flags: int) -> re.Pattern:
     if got is not None:
         import _sre
         try:
-            return _sre.compile(source, *got)
+            flags2, code, groups, groupindex, indexgroup = got
+            # the opcodes are kept as bytes (unsigned 32-bit words): marshal
+            # reads a whole file of them as fast as it copies it, and only
+            # the patterns this command uses become lists of ints
+            return _sre.compile(source, flags2, memoryview(code).cast("I").tolist(), groups,
+                                groupindex, indexgroup)
         except Exception:       # noqa: BLE001 - a stale or damaged entry: compile anew
             pass
     try:
@@ -105,11 +111,12 @@ def _compiled(source: str, flags: int) -> re.Pattern:
         indexgroup = [None] * parsed.state.groups
         for name, i in groupindex.items():
             indexgroup[i] = name
-        # plain ints: the opcodes are int subclasses, which marshal refuses
-        args = (int(flags | parsed.state.flags), [int(c) for c in code],
-                parsed.state.groups - 1, groupindex, tuple(indexgroup))
         import _sre
-        compiled = _sre.compile(source, *args)
+        compiled = _sre.compile(source, flags | parsed.state.flags, code,
+                                parsed.state.groups - 1, groupindex, tuple(indexgroup))
+        import array
+        args = (int(flags | parsed.state.flags), array.array("I", code).tobytes(),
+                parsed.state.groups - 1, groupindex, tuple(indexgroup))
     except Exception:           # noqa: BLE001 - not this re's internals: as re does it
         return re.compile(source, flags)
     store[key] = args

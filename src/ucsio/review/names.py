@@ -8,11 +8,10 @@ entry (``TOOL_DATA[7]``).
 """
 from __future__ import annotations
 
-import re
-
 from ..errors import UcsioError
+from ..parsing import regex
 
-_ELEMENT = re.compile(r"\s*([A-Za-z_$][\w$]*)\s*(?:\[\s*([+-]?\d+)\s*\]|\{\s*([+-]?\d+)\s*\})\s*\Z")
+_ELEMENT = regex.lazy(r"\s*([A-Za-z_$][\w$]*)\s*(?:\[\s*([+-]?\d+)\s*\]|\{\s*([+-]?\d+)\s*\})\s*\Z")
 
 
 def find_frame(cf, name: str):
