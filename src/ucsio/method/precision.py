@@ -1,5 +1,6 @@
 """The determinacy gate (SPEC, "The method", point 7): how well do the used
-points pin the fitted frame down?
+points pin the fitted frame down? And, with the same covariance, how well at
+the points where the robot works (SPEC, "Planning and working points").
 
 A fit can have small residuals and still be far off: points near a line leave
 the rotation about that line to the noise, and the residuals cannot show it.
@@ -13,18 +14,25 @@ in coordinates centred on the weighted centroid (p_i = R (l_i - c)):
     robot_i = exp([dθ]x) R l_i + t + dt  ->  J_i = [I3, -[p_i]x]  for (dt, dθ)
     H = Σ w_i J_i^T J_i,   G = Σ w_i² J_i^T J_i,   cov = σ² H⁻¹ G H⁻¹
 
-where σ, the per-axis noise of a point, is the larger of the stated noise
-√(σ_laser² + σ_robot²) and the residuals' own estimate √(Σ|e_i|² / (3n − 6))
-(3n numbers, 6 parameters): stated noise cannot make a fit whose residuals
-say otherwise look precise.
+K = H⁻¹ G H⁻¹ is the covariance per unit noise; ``moments`` gives H and G,
+so ``ucsio plan`` can add or take away a point's term without refitting.
+
+The noise σ per axis: the stated √(σ_laser² + σ_robot²), or the residuals'
+own estimate s = √(Σ|e_i|² / (3n − 6)) (3n numbers, 6 parameters) where
+that says more: stated noise cannot make a fit whose residuals say otherwise
+look precise. An estimate from a few residuals is not a known σ: where s
+sets the prediction, the quantile is the one for an estimated scale
+(``quantile.norm95_sq`` with ν = 3n − 6, Student's t in several dimensions),
+so that 95 % means 95 % (tests/test_plan.py, the calibration). A prediction
+is the larger of the two: σ_stated · q(K) and s · q_ν(K).
 
 A point at p = c + r·u moves by dt − r [u]x dθ. The worst direction u is the
 one across which the orientation is least certain (the eigenvector of the
 smallest eigenvalue of cov_θ: every other rotation axis then swings p);
-both signs of u are tried. The 95 % quantile of |displacement| for that 3x3
-covariance is the Satterthwaite scaled χ² (matching mean and variance of
-|d|²) with the Wilson–Hilferty quantile: within about 1 % of the exact value
-from one to three dimensions.
+both signs of u are tried. At a working point w the displacement is
+J_w (dt, dθ) with J_w = [I, -[R (w - c)]x]; its 3x3 covariance's entries are
+quadratic in w, so ``at_points95`` evaluates many covariances (candidate
+plans) at many points as one matrix product of coefficients and monomials.
 
 Everything is batched over a leading axis (``batch`` judges a fleet at once).
 """
@@ -34,7 +42,7 @@ import math
 
 import numpy as np
 
-Z95 = 1.6448536269514722      # one-sided standard normal quantile at 0.95
+from .quantile import INF, Z95, norm95_sq  # noqa: F401  (Z95 re-exported)
 
 
 def skew(v: np.ndarray) -> np.ndarray:
@@ -45,22 +53,39 @@ def skew(v: np.ndarray) -> np.ndarray:
                      np.stack([-y, x, o], -1)], axis=-2)
 
 
-def quantile95_norm(cov: np.ndarray) -> np.ndarray:
-    """(..., 3, 3) covariances -> the 95 % quantile of |d|, d ~ N(0, cov)."""
-    mean = np.trace(cov, axis1=-2, axis2=-1)
-    var = 2.0 * np.einsum("...ij,...ji->...", cov, cov)
+def _q95(mean, var, dof=INF):
+    """√norm95_sq on arrays; 0 where the covariance is 0."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        g = var / (2.0 * mean)
-        k = 2.0 * mean * mean / var
-        h = 2.0 / (9.0 * k)
-        q = g * k * (1.0 - h + Z95 * np.sqrt(h)) ** 3
+        q = norm95_sq(mean, var, dof)
     return np.sqrt(np.where(mean > 0, q, 0.0))
 
 
-def at_reach95(cov: np.ndarray, reach) -> np.ndarray:
+def quantile95_norm(cov: np.ndarray, dof=INF) -> np.ndarray:
+    """(..., 3, 3) covariances -> the 95 % quantile of |d|, d ~ N(0, cov);
+    with ``dof`` finite, cov's scale estimated from that many degrees of
+    freedom (``quantile``)."""
+    mean = np.trace(cov, axis1=-2, axis2=-1)
+    var = 2.0 * np.einsum("...ij,...ji->...", cov, cov)
+    return _q95(mean, var, dof)
+
+
+def q95(cov: np.ndarray, sigma_stated=1.0, sigma_residual=0.0, dof=INF) -> np.ndarray:
+    """(B, 3, 3) covariances per unit noise -> the 95 % displacement (B,):
+    max(σ_stated q(K), s q_ν(K)) (module docstring)."""
+    sigma_stated = np.broadcast_to(np.asarray(sigma_stated, float), cov.shape[:1])
+    sigma_residual = np.broadcast_to(np.asarray(sigma_residual, float), cov.shape[:1])
+    dof = np.broadcast_to(np.asarray(dof, float), cov.shape[:1])
+    return np.maximum(sigma_stated * quantile95_norm(cov),
+                      sigma_residual * quantile95_norm(cov, dof))
+
+
+def at_reach95(cov: np.ndarray, reach, sigma_stated=1.0, sigma_residual=0.0,
+               dof=INF) -> np.ndarray:
     """(B, 6, 6) covariances of (dt at the centroid, dθ) -> the 95 % displacement
     (B,) of a point ``reach`` mm from the centroid, in the worst direction
-    (module docstring). Also used for the joint TCP model's frame block."""
+    (module docstring). ``cov`` is per unit noise with the noise given
+    (``q95``), or already scaled (the defaults). Also used for the joint
+    TCP model's frame block."""
     ctt, ctq, cqq = cov[:, :3, :3], cov[:, :3, 3:], cov[:, 3:, 3:]
     evals, evecs = np.linalg.eigh(cqq)
     u = evecs[:, :, 0]                                           # least-doubt axis
@@ -70,7 +95,7 @@ def at_reach95(cov: np.ndarray, reach) -> np.ndarray:
         U = skew(sgn * u)
         cp = ctt - r * (ctq @ np.swapaxes(U, 1, 2)) - r * (U @ np.swapaxes(ctq, 1, 2)) \
             + r * r * (U @ cqq @ np.swapaxes(U, 1, 2))
-        worst = np.maximum(worst, quantile95_norm(cp))
+        worst = np.maximum(worst, q95(cp, sigma_stated, sigma_residual, dof))
     return worst
 
 
@@ -82,14 +107,33 @@ def residual_sigma(sum_e2, n_used, params: int = 6):
     return np.sqrt(np.asarray(sum_e2, dtype=float) / dof)
 
 
-def fit_covariance(p, w) -> np.ndarray:
-    """H⁻¹ G H⁻¹ (B, 6, 6) for (dt, dθ) of weighted fits whose points, in
-    robot axes about the origin the translation is taken at, are p (B, n, 3)
-    with weights w (B, n): J_i = [I3, -[p_i]x], H = Σ w_i J_i^T J_i, G = Σ w_i²
-    J_i^T J_i. Times σ² it is the fit's first-order covariance."""
+def dof_of(n_used, params: int = 6):
+    """The residuals' degrees of freedom, 3n − params (at least 1)."""
+    return np.maximum(3.0 * np.asarray(n_used, dtype=float) - params, 1.0)
+
+
+def point_terms(p, w) -> np.ndarray:
+    """w_i J_i^T J_i (..., n, 6, 6) for points p (..., n, 3) and weights
+    w (..., n): J_i = [I3, -[p_i]x]."""
     p = np.asarray(p, dtype=float)
     w = np.asarray(w, dtype=float)
-    # J_i^T J_i = [[I, -[p]x], [[p]x, |p|² I - p p^T]], summed with w and w².
+    # J^T J = [[I, -[p]x], [[p]x, |p|² I - p p^T]]
+    P = skew(p)
+    M = np.zeros(p.shape[:-1] + (6, 6))
+    M[..., :3, :3] = np.eye(3)
+    M[..., :3, 3:] = -P
+    M[..., 3:, :3] = P
+    M[..., 3:, 3:] = (np.einsum("...i,...i->...", p, p)[..., None, None] * np.eye(3)
+                      - p[..., :, None] * p[..., None, :])
+    return w[..., None, None] * M
+
+
+def moments(p, w) -> tuple[np.ndarray, np.ndarray]:
+    """H = Σ w_i J_i^T J_i and G = Σ w_i² J_i^T J_i (B, 6, 6) for weighted fits
+    whose points, in robot axes about the origin the translation is taken
+    at, are p (B, n, 3) with weights w (B, n)."""
+    p = np.asarray(p, dtype=float)
+    w = np.asarray(w, dtype=float)
     P = skew(p)                                                 # (B, n, 3, 3)
     inner = (np.einsum("bni,bni->bn", p, p)[..., None, None] * np.eye(3)
              - np.einsum("bni,bnj->bnij", p, p))
@@ -102,10 +146,118 @@ def fit_covariance(p, w) -> np.ndarray:
         M[:, 3:, 3:] = np.einsum("bn,bnij->bij", v, inner)
         return M
 
-    with np.errstate(all="ignore"):
-        Hinv = np.linalg.pinv(moment(w), hermitian=True)
-        return Hinv @ moment(w * w) @ Hinv
+    return moment(w), moment(w * w)
 
+
+def sandwich(H: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """H⁻¹ G H⁻¹ (batched; a pseudo-inverse, so an undetermined direction
+    gives a finite number the degeneracy checks judge, not an exception)."""
+    with np.errstate(all="ignore"):
+        Hinv = np.linalg.pinv(H, hermitian=True)
+        return Hinv @ G @ Hinv
+
+
+def fit_covariance(p, w) -> np.ndarray:
+    """H⁻¹ G H⁻¹ (B, 6, 6) for (dt, dθ) of weighted fits whose points, in
+    robot axes about the origin the translation is taken at, are p (B, n, 3)
+    with weights w (B, n). Times σ² it is the fit's first-order covariance."""
+    return sandwich(*moments(p, w))
+
+
+def shift(cov: np.ndarray, delta) -> np.ndarray:
+    """(B, k, k) covariances whose first six are (dt at a point o, dθ) -> the
+    same with dt at o + delta (robot axes, (B, 3)): dt' = dt − [delta]x dθ."""
+    delta = np.asarray(delta, dtype=float)
+    T = np.broadcast_to(np.eye(cov.shape[-1]), cov.shape).copy()
+    T[:, :3, 3:6] = -skew(delta)
+    return T @ cov @ np.swapaxes(T, 1, 2)
+
+
+# ---------------------------------------------------------------- working points
+
+# J(p) = [I, -[p]x] = A[0] + p_x A[1] + p_y A[2] + p_z A[3]
+_A = np.zeros((4, 3, 6))
+_A[0, :, :3] = np.eye(3)
+for _k in range(3):
+    _A[1 + _k, :, 3:] = -skew(np.eye(3)[_k])
+_PAIRS = [(k, m) for k in range(4) for m in range(k, 4)]     # 10 monomials p_k p_m (p_0 = 1)
+_ENTRIES = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))   # xx yy zz xy xz yz
+
+
+def point_coefficients(cov: np.ndarray) -> np.ndarray:
+    """(B, 6, 6) covariances -> (B, 6, 10): the covariance at a point p
+    (robot axes, about the translation's origin) has entries xx yy zz xy xz
+    yz = coefficients @ monomials(p)."""
+    AC = np.einsum("kij,bjl->bkil", _A, cov)                    # (B, 4, 3, 6)
+    S = np.einsum("bkil,mjl->bkmij", AC, _A)                    # A_k C A_m^T (B, 4, 4, 3, 3)
+    out = np.empty((len(cov), 6, len(_PAIRS)))
+    for col, (k, m) in enumerate(_PAIRS):
+        term = S[:, k, m] if k == m else S[:, k, m] + S[:, m, k]
+        for row, (a, b) in enumerate(_ENTRIES):
+            out[:, row, col] = term[:, a, b]
+    return out
+
+
+def monomials(p) -> np.ndarray:
+    """(W, 3) points -> (10, W): 1, p_x, p_y, p_z and their products, in
+    ``point_coefficients``' order."""
+    p = np.asarray(p, dtype=float)
+    one = np.ones((len(p), 1))
+    q = np.concatenate([one, p], axis=1)                        # (W, 4)
+    return np.stack([q[:, k] * q[:, m] for k, m in _PAIRS])
+
+
+def _point_q(entries: np.ndarray, sigma_stated, sigma_residual, dof) -> np.ndarray:
+    """(B, 6, W) covariance entries per unit noise -> (B, W) 95 % displacements."""
+    xx, yy, zz, xy, xz, yz = (entries[:, k] for k in range(6))
+    mean = xx + yy + zz
+    var = 2.0 * (xx * xx + yy * yy + zz * zz + 2.0 * (xy * xy + xz * xz + yz * yz))
+    s_stated = np.asarray(sigma_stated, float).reshape(-1, 1)
+    q = s_stated * _q95(mean, var)
+    s_res = np.asarray(sigma_residual, float).reshape(-1, 1)
+    if np.any(s_res > 0):
+        q = np.maximum(q, s_res * _q95(mean, var, np.asarray(dof, float).reshape(-1, 1)))
+    return q
+
+
+#: (covariances x points) evaluated at once: about 6 arrays of this many
+#: floats live at a time, a few tens of MB
+_CHUNK = 400_000
+
+
+def at_points95(cov: np.ndarray, p, sigma_stated=1.0, sigma_residual=0.0,
+                dof=INF) -> np.ndarray:
+    """The 95 % displacement (B, W) at the points p (W, 3) (robot axes,
+    relative to the translation's origin) of B covariances (B, 6, 6) per
+    unit noise."""
+    coef = point_coefficients(cov)
+    mono = monomials(p)
+    return _point_q(coef @ mono, sigma_stated, sigma_residual, dof)
+
+
+def worst_at_points95(cov: np.ndarray, p, sigma_stated=1.0, sigma_residual=0.0,
+                      dof=INF) -> tuple[np.ndarray, np.ndarray]:
+    """(largest 95 % displacement (B,), index of its point (B,)) over the
+    points p (W, 3) for each of B covariances: ``at_points95`` in chunks of
+    covariances, never the whole (B, W) at once."""
+    coef = point_coefficients(cov)
+    mono = monomials(p)
+    B, W = len(cov), mono.shape[1]
+    step = max(1, _CHUNK // max(W, 1))
+    worst = np.empty(B)
+    where = np.empty(B, dtype=np.intp)
+    ss = np.broadcast_to(np.asarray(sigma_stated, float), (B,))
+    sr = np.broadcast_to(np.asarray(sigma_residual, float), (B,))
+    nu = np.broadcast_to(np.asarray(dof, float), (B,))
+    for a in range(0, B, step):
+        b = min(B, a + step)
+        q = _point_q(coef[a:b] @ mono, ss[a:b], sr[a:b], nu[a:b])
+        where[a:b] = np.argmax(q, axis=1)
+        worst[a:b] = q[np.arange(b - a), where[a:b]]
+    return worst, where
+
+
+# ---------------------------------------------------------------- the gate
 
 def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str, np.ndarray]:
     """The gate's numbers for a batch of fits.
@@ -113,9 +265,14 @@ def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str,
     laser (B, n, 3) and weights (B, n) (0 for unused or padded points), R
     (B, 3, 3) the fitted rotations, sum_e2 (B,) Σ|e_i|² over the used points,
     n_used (B,), sigma_stated (B,) √(σ_laser² + σ_robot²), reach (B,) mm.
-    Returns arrays (B,): ``sigma`` (mm), ``angle_std`` (deg, √trace cov_θ),
-    ``at_reach`` (mm, 95 %), ``at_centroid`` (mm, 95 %, the translation alone)
-    and ``spread`` (B, 3) principal RMS spreads of the used laser points (mm).
+    Returns arrays (B,): ``sigma`` (mm, the larger of the stated and the
+    residuals' noise), ``sigma_residual`` (s), ``dof`` (3n − 6),
+    ``angle_std`` (deg, σ √trace cov_θ), ``at_reach`` (mm, 95 %),
+    ``at_centroid`` (mm, 95 %, the translation alone), ``sigma_source``
+    ('stated' or 'residuals': which bound sets at_reach), ``spread`` (B, 3)
+    principal RMS spreads of the used laser points (mm), and for the working
+    points ``K`` (B, 6, 6) per unit noise, in robot axes about ``centroid``
+    (B, 3, in the UCS).
     """
     L = np.asarray(laser, dtype=float)
     w = np.asarray(weights, dtype=float)
@@ -123,15 +280,21 @@ def predict(laser, weights, R, sum_e2, n_used, sigma_stated, reach) -> dict[str,
     wsum = w.sum(axis=1)
     c = np.einsum("bn,bni->bi", w, L) / wsum[:, None]
     p = np.einsum("bij,bnj->bni", R, L - c[:, None, :])          # centred, robot axes
-    sigma = np.maximum(np.asarray(sigma_stated, dtype=float), residual_sigma(sum_e2, n_used))
-    cov = (sigma ** 2)[:, None, None] * fit_covariance(p, w)
-    ctt, cqq = cov[:, :3, :3], cov[:, 3:, 3:]
-    worst = at_reach95(cov, reach)
+    stated = np.asarray(sigma_stated, dtype=float)
+    s = residual_sigma(sum_e2, n_used)
+    dof = dof_of(n_used)
+    sigma = np.maximum(stated, s)
+    K = fit_covariance(p, w)
+    worst = at_reach95(K, reach, stated, s, dof)
+    from_stated = at_reach95(K, reach, stated)
     C = np.einsum("bn,bni,bnj->bij", w, p, p) / wsum[:, None, None]
     spread = np.sqrt(np.clip(np.linalg.eigvalsh(C)[:, ::-1], 0.0, None))
-    return {"sigma": sigma,
-            "angle_std": np.degrees(np.sqrt(np.clip(np.trace(cqq, axis1=1, axis2=2), 0, None))),
-            "at_reach": worst, "at_centroid": quantile95_norm(ctt), "spread": spread}
+    return {"sigma": sigma, "sigma_residual": s, "dof": dof,
+            "angle_std": np.degrees(sigma * np.sqrt(np.clip(np.trace(K[:, 3:, 3:], axis1=1,
+                                                                      axis2=2), 0, None))),
+            "at_reach": worst, "at_centroid": q95(K[:, :3, :3], stated, s, dof),
+            "sigma_source": np.where(worst > from_stated, "residuals", "stated"),
+            "spread": spread, "K": K, "centroid": c}
 
 
 def reason(at_reach: float, at_centroid: float, reach: float, threshold: float,
@@ -150,3 +313,11 @@ def reason(at_reach: float, at_centroid: float, reach: float, threshold: float,
                   max(threshold ** 2 - at_centroid ** 2, 1e-300))
     return head + (f"; spread the points about {k:.1f} times wider across the fixture, or "
                    "measure more points")
+
+
+def at_reason(name: str, at_95: float, threshold: float, sigma: float) -> str:
+    """Why a dataset fails the gate judged at the working points (--gate at)."""
+    return (f"the points do not pin the frame down where the robot works: working point "
+            f"{name} is known only to {at_95:.2f} mm (95 %), over the {threshold:g} mm "
+            f"threshold (noise {sigma:.3f} mm per axis); spread the points toward the working "
+            "points or measure more points (ucsio plan says where)")

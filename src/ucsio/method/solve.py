@@ -82,6 +82,12 @@ class Solution:
     precision: dict[str, Any] | None = None  # the determinacy gate's numbers (SPEC point 7)
     tcp_solved: dict[str, Any] | None = None  # --tcp solve: x, y, z, std (ucsio.method.tcp_solve)
     diagnosis: dict[str, Any] | None = None   # a rejection a TCP change explains (tcp_solve)
+    covariance: dict[str, Any] | None = None  # the frame's per unit noise (working.covariance_json)
+    consistency: dict[str, Any] | None = None  # the noise check (ucsio.method.noise)
+    working_points: list[dict[str, Any]] | None = None   # --at: each name, x, y, z, at_95
+    worst: dict[str, Any] | None = None       # --at: the working point predicted worst
+    gate: str = "reach"                        # what the determinacy gate judged: reach | at
+    at_source: str | None = None               # where the working points came from
 
     def __post_init__(self) -> None:
         # a Solution built elsewhere (the batched solver) without a reason still says why
@@ -129,6 +135,15 @@ class Solution:
             d["uncertainty"] = self.uncertainty
         if self.diagnosis is not None:
             d["diagnosis"] = self.diagnosis
+        if self.consistency is not None:
+            d["consistency"] = self.consistency
+        if self.working_points is not None:
+            d["working_points"] = self.working_points
+            d["worst"] = self.worst
+            d["gate"] = self.gate
+            d["at"] = self.at_source
+        if self.covariance is not None:
+            d["covariance"] = self.covariance
         return d
 
 
@@ -210,10 +225,13 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
                  exclude: Iterable[str] = (), no_exclusion: bool = False,
                  lines: Sequence[int | None] | None = None, reach: float = defaults.REACH,
                  sigma_laser: float = DEFAULT_SIGMA_LASER,
-                 sigma_robot: float = DEFAULT_SIGMA_ROBOT) -> Solution:
+                 sigma_robot: float = DEFAULT_SIGMA_ROBOT, at=None,
+                 gate: str = "reach") -> Solution:
     """The method on points already in robot world (robot = flange * tcp):
     a batch of one through ``solve_many``, so ``solve`` and ``batch`` share
-    one implementation of the exclusion rule."""
+    one implementation of the exclusion rule. ``at``: working points
+    (``readers.points.Points``, UCS) whose 95 % error the solution predicts;
+    ``gate`` "at": the determinacy gate judges the worst of them."""
     laser = np.asarray(laser, dtype=float)
     robot = np.asarray(robot, dtype=float)
     n = len(names)
@@ -227,12 +245,13 @@ def solve_points(names: Sequence[str], laser, robot, weights=None, *,
     if not (math.isfinite(reach) and reach >= 0):
         raise UcsioError(f"--reach {reach}: a distance must be a finite number >= 0 (mm)")
     check_sigmas(sigma_laser, sigma_robot)
+    check_gate(gate, at)
     result = solve_many([Dataset(names=list(names), laser=laser, robot=robot, weights=weights,
                                  threshold=threshold, min_points=min_points,
                                  exclude=tuple(exclude), no_exclusion=no_exclusion,
                                  lines=None if lines is None else list(lines),
                                  sigma_stated=math.hypot(sigma_laser, sigma_robot),
-                                 reach=float(reach))])[0]
+                                 reach=float(reach), at=at, gate=gate)])[0]
     if isinstance(result, UcsioError):
         raise result
     return result
@@ -260,6 +279,8 @@ class Dataset:
     path: str | None = None      # for error messages
     sigma_stated: float = math.hypot(defaults.SIGMA_LASER, defaults.SIGMA_ROBOT)
     reach: float = defaults.REACH
+    at: Any = None               # working points (readers.points.Points), UCS
+    gate: str = "reach"          # "at": the gate judges the worst working point
 
 
 def _round(data: list[Dataset], active: list[int], used: dict[int, np.ndarray]):
@@ -324,8 +345,11 @@ def _unusable(d: Dataset) -> UcsioError | None:
 def _precision(data: Sequence[Dataset], final: dict[int, tuple],
                used: dict[int, np.ndarray]) -> dict[int, dict[str, Any]]:
     """The determinacy gate's numbers (``ucsio.method.precision``) for every final
-    fit, in one batched call: ``precision`` with sigma, angle_std, reach,
-    at_reach, plus the rejection reason where at_reach exceeds the threshold."""
+    fit, in one batched call: per dataset ``precision`` (sigma, angle_std,
+    reach, at_reach, ...), ``covariance`` (per unit noise, for working
+    points later: ``working``), ``consistency`` (the noise check) and, for a
+    dataset with working points, ``working_points`` and ``worst``."""
+    from . import noise, working
     from . import precision as prec
 
     order = list(final)
@@ -344,23 +368,32 @@ def _precision(data: Sequence[Dataset], final: dict[int, tuple],
         Rs[a] = R
         e2[a] = float(np.sum(resid[u] ** 2))
     n_used = (W > 0).sum(axis=1)
-    p = prec.predict(L, W, Rs, e2, n_used, [data[i].sigma_stated for i in order],
-                     [data[i].reach for i in order])
+    stated = [data[i].sigma_stated for i in order]
+    p = prec.predict(L, W, Rs, e2, n_used, stated, [data[i].reach for i in order])
     # one .tolist() per array, not a float() per number (10,000 datasets in a batch)
     sigma, angle_std = p["sigma"].tolist(), p["angle_std"].tolist()
     at_reach, at_centroid, spread = (p["at_reach"].tolist(), p["at_centroid"].tolist(),
                                      p["spread"].tolist())
+    s_res, dof, source = p["sigma_residual"].tolist(), p["dof"].tolist(), p["sigma_source"]
+    K, centroid = p["K"], p["centroid"]
+    e2l, nl = e2.tolist(), n_used.tolist()
     out = {}
     for a, i in enumerate(order):
         d = data[i]
         item = {"sigma": sigma[a], "angle_std": angle_std[a],
                 "reach": float(d.reach), "at_reach": at_reach[a],
-                "at_centroid": at_centroid[a], "spread": spread[a]}
+                "at_centroid": at_centroid[a], "spread": spread[a],
+                "sigma_source": str(source[a]), "dof": dof[a]}
         if not item["at_reach"] <= d.threshold:
             item["reason"] = prec.reason(item["at_reach"], item["at_centroid"], d.reach,
                                          d.threshold, item["sigma"], item["angle_std"],
                                          item["spread"])
-        out[i] = item
+        cov = working.covariance_json(K[a], centroid[a], stated[a], s_res[a], dof[a])
+        got = {"precision": item, "covariance": cov,
+               "consistency": noise.consistency(e2l[a], nl[a], 6, stated[a])}
+        if d.at is not None:
+            got["working_points"], got["worst"] = working.predict(cov, Rs[a], d.at)
+        out[i] = got
     return out
 
 
@@ -438,10 +471,10 @@ def _solve_many(data: Sequence[Dataset]) -> list:
         accepted, reason = acceptance(n_used, r_max, threshold=d.threshold,
                                       min_points=d.min_points, no_exclusion=d.no_exclusion,
                                       n_auto=excluded_by[i].count("auto"))
-        precision = gate[i]
-        if accepted and not precision["at_reach"] <= d.threshold:
-            accepted, reason = False, precision.pop("reason")
-        precision.pop("reason", None)
+        got = gate[i]
+        precision = got["precision"]
+        accepted, reason = judge(accepted, reason, precision, got.get("worst"), d.gate,
+                                 d.threshold)
         # plain floats from one .tolist() per array: the per-number float()
         # calls were a large part of batch's bookkeeping at 10,000 datasets
         lines = d.lines if d.lines is not None else [None] * len(d.names)
@@ -456,8 +489,31 @@ def _solve_many(data: Sequence[Dataset]) -> list:
                               mean=float(np.mean(r_used)), max=r_max,
                               accepted=accepted, reason=reason, threshold=float(d.threshold),
                               min_points=int(d.min_points), source=d.path,
-                              no_exclusion=bool(d.no_exclusion), precision=precision)
+                              no_exclusion=bool(d.no_exclusion), precision=precision,
+                              covariance=got["covariance"], consistency=got["consistency"],
+                              working_points=got.get("working_points"), worst=got.get("worst"),
+                              gate=d.gate)
     return results
+
+
+def judge(accepted: bool, reason: str | None, precision: dict, worst: dict | None, gate: str,
+          threshold: float) -> tuple[bool, str | None]:
+    """The determinacy gate on a fit that passed the point rules: at the
+    generic reach (``precision``'s at_reach, its ``reason`` popped), or with
+    ``gate`` "at" at the worst working point instead."""
+    from .precision import at_reason
+
+    why = precision.pop("reason", None)
+    if not accepted:
+        return accepted, reason
+    if gate == "at":
+        if worst is not None and not worst["at_95"] <= threshold:
+            return False, at_reason(worst["name"], worst["at_95"], threshold,
+                                    precision["sigma"])
+        return accepted, reason
+    if not precision["at_reach"] <= threshold:
+        return False, why
+    return accepted, reason
 
 
 #: SPEC point 8: a TCP is never silently 0,0,0.
@@ -470,7 +526,7 @@ def solve(measurement, tcp, *, threshold: float = DEFAULT_THRESHOLD,
           min_points: int = DEFAULT_MIN_POINTS, exclude: Iterable[str] = (),
           no_exclusion: bool = False, tool: str | None = None, reach: float = defaults.REACH,
           sigma_laser: float = DEFAULT_SIGMA_LASER,
-          sigma_robot: float = DEFAULT_SIGMA_ROBOT) -> Solution:
+          sigma_robot: float = DEFAULT_SIGMA_ROBOT, at=None, gate: str = "reach") -> Solution:
     """The method on a ``measurement.Measurement``; errors name its file.
     ``tcp`` (x, y, z) has no default: None is the error SPEC asks for."""
     if tcp is None:
@@ -480,7 +536,8 @@ def solve(measurement, tcp, *, threshold: float = DEFAULT_THRESHOLD,
         sol = solve_points(measurement.names, measurement.laser, measurement.robot_points(tcp),
                            measurement.weights, threshold=threshold, min_points=min_points,
                            exclude=exclude, no_exclusion=no_exclusion, lines=measurement.lines,
-                           reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot)
+                           reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot,
+                           at=at, gate=gate)
     except UcsioError as exc:
         if exc.file is None:
             raise UcsioError(exc.message, file=measurement.path) from None
@@ -492,6 +549,17 @@ def solve(measurement, tcp, *, threshold: float = DEFAULT_THRESHOLD,
 
 
 # ---------------------------------------------------------------- uncertainty
+
+GATES = ("reach", "at")
+
+
+def check_gate(gate: str, at) -> None:
+    """--gate reach|at; "at" needs working points."""
+    if gate not in GATES:
+        raise UcsioError(f"--gate {gate!r}: expected reach or at")
+    if gate == "at" and at is None:
+        raise UcsioError("--gate at judges the working points: give them with --at FILE")
+
 
 def check_sigmas(sigma_laser: float, sigma_robot: float) -> None:
     """Noise levels are standard deviations: finite and not negative."""

@@ -133,19 +133,35 @@ def first_solution(laser, Rf, tf, w):
 
 # ---------------------------------------------------------------- the gate
 
+def joint_terms(p, Rf, w) -> np.ndarray:
+    """w_i J_i^T J_i (..., n, 9, 9) for (dt, dθ, dx): J_i = [I, -[p_i]x, -R_i],
+    p_i the laser points in robot axes about the translation's origin, R_i
+    the flange orientations."""
+    p = np.asarray(p, dtype=float)
+    J = np.zeros(p.shape[:-1] + (3, 9))
+    J[..., :3] = np.eye(3)
+    J[..., 3:6] = -skew(p)
+    J[..., 6:] = -np.asarray(Rf, dtype=float)
+    return np.asarray(w, dtype=float)[..., None, None] * np.einsum("...ki,...kj->...ij", J, J)
+
+
+def moments(laser, Rf, R, w, centred: bool = True):
+    """H = Σ w_i J_i^T J_i and G = Σ w_i² J_i^T J_i (9, 9), and the point the
+    translation is taken at (UCS): the weighted centroid, or with
+    ``centred`` False the frame's origin."""
+    w = np.asarray(w, dtype=float)
+    c = (w[:, None] * laser).sum(axis=0) / w.sum() if centred else np.zeros(3)
+    p = (laser - c) @ R.T
+    T = joint_terms(p, Rf, np.ones_like(w))
+    return np.einsum("n,nij->ij", w, T), np.einsum("n,nij->ij", w * w, T), c
+
+
 def covariance(laser, Rf, R, w, sigma: float, centred: bool = True) -> np.ndarray:
     """First-order covariance (9, 9) of (dt, dθ, dx): dt at the centroid (the
     frame's first six in precision.py's coordinates), or with ``centred``
-    False at the frame's origin (the fitted translation's own doubt)."""
-    c = (w[:, None] * laser).sum(axis=0) / w.sum() if centred else np.zeros(3)
-    p = (laser - c) @ R.T
-    J = np.zeros((len(laser), 3, 9))
-    J[:, :, :3] = np.eye(3)
-    J[:, :, 3:6] = -skew(p)
-    J[:, :, 6:] = -Rf
-    JtJ = np.einsum("nki,nkj->nij", J, J)
-    H = np.einsum("n,nij->ij", w, JtJ)
-    G = np.einsum("n,nij->ij", w * w, JtJ)
+    False at the frame's origin (the fitted translation's own doubt). inf
+    where some direction is undetermined."""
+    H, G, _c = moments(laser, Rf, R, w, centred)
     ev = np.linalg.eigvalsh(H)
     if ev[0] <= 1e-12 * max(ev[-1], 1e-300):
         return np.full((9, 9), np.inf)                       # some direction undetermined
@@ -180,19 +196,21 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
                 min_points: int = defaults.MIN_POINTS, exclude: Iterable[str] = (),
                 no_exclusion: bool = False, reach: float = defaults.REACH,
                 sigma_laser: float = defaults.SIGMA_LASER,
-                sigma_robot: float = defaults.SIGMA_ROBOT):
+                sigma_robot: float = defaults.SIGMA_ROBOT, at=None, gate: str = "reach"):
     """The method with the TCP among the unknowns: a ``solve.Solution`` whose
     ``tcp`` is the solved offset and ``tcp_solved`` its JSON (x, y, z,
-    solved, std, at_95)."""
+    solved, std, at_95). ``at``, ``gate``: working points, as ``solve``."""
+    from . import noise, working
     from . import precision as prec
-    from .solve import (PointResult, Solution, acceptance, check_sigmas, hand_marks,
-                        next_exclusion)
+    from .solve import (PointResult, Solution, acceptance, check_gate, check_sigmas,
+                        hand_marks, judge, next_exclusion)
 
     if not threshold > 0:
         raise UcsioError(f"threshold must be positive, got {threshold}")
     if min_points < 3:
         raise UcsioError(f"min-points must be at least 3, got {min_points}")
     check_sigmas(sigma_laser, sigma_robot)
+    check_gate(gate, at)
     path = measurement.path
     names = list(measurement.names)
     laser = np.asarray(measurement.laser, dtype=float)
@@ -233,34 +251,51 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
         accepted, reason = acceptance(n_used, float(r_used.max()), threshold=threshold,
                                       min_points=min_points, no_exclusion=no_exclusion,
                                       n_auto=marks.count("auto"))
-        # the gates, from the used points' geometry
+        # the gates, from the used points' geometry: per unit noise, then the
+        # larger of the stated noise's quantile and the residuals' (3n - 9 dof)
         stated = math.hypot(sigma_laser, sigma_robot)
-        sigma = max(stated, float(residual_sigma(np.sum(r_used ** 2), n_used, params=9)))
+        e2 = float(np.sum(r_used ** 2))
+        s_res = float(residual_sigma(e2, n_used, params=9))
+        dof = float(prec.dof_of(n_used, params=9))
+        sigma = max(stated, s_res)
         wu = weights * used
-        cov = covariance(laser[used], Rf[used], R, wu[used], sigma)
-        finite = bool(np.all(np.isfinite(cov)))
-        doubt = float(prec.quantile95_norm(cov[None, 6:, 6:])[0]) if finite else math.inf
-        tcp_std = np.sqrt(np.clip(np.diag(cov)[6:], 0.0, None)) if finite else np.full(3, np.inf)
+        K = covariance(laser[used], Rf[used], R, wu[used], 1.0)
+        finite = bool(np.all(np.isfinite(K)))
         span = orientation_span(Rf[used])
         lu = laser[used]
         cen = (wu[used][:, None] * lu).sum(axis=0) / wu[used].sum()
         C = np.einsum("n,ni,nj->ij", wu[used], lu - cen, lu - cen) / wu[used].sum()
         spread = np.sqrt(np.clip(np.linalg.eigvalsh(C)[::-1], 0.0, None))
         if finite:
-            at_reach = float(prec.at_reach95(cov[None, :6, :6], reach)[0])
-            at_centroid = float(prec.quantile95_norm(cov[None, :3, :3])[0])
-            angle_std = float(np.degrees(np.sqrt(max(np.trace(cov[3:6, 3:6]), 0.0))))
+            doubt = float(prec.q95(K[None, 6:, 6:], stated, s_res, dof)[0])
+            tcp_std = sigma * np.sqrt(np.clip(np.diag(K)[6:], 0.0, None))
+            at_reach = float(prec.at_reach95(K[None, :6, :6], reach, stated, s_res, dof)[0])
+            source = ("residuals" if at_reach > float(prec.at_reach95(K[None, :6, :6], reach,
+                                                                        stated)[0])
+                      else "stated")
+            at_centroid = float(prec.q95(K[None, :3, :3], stated, s_res, dof)[0])
+            angle_std = float(np.degrees(sigma * np.sqrt(max(np.trace(K[3:6, 3:6]), 0.0))))
+            cov_json = working.covariance_json(K[:6, :6], cen, stated, s_res, dof)
         else:
-            at_reach = at_centroid = angle_std = math.inf
+            doubt = at_reach = at_centroid = angle_std = math.inf
+            tcp_std = np.full(3, np.inf)
+            source, cov_json = "stated", None
     precision = {"sigma": sigma, "angle_std": angle_std, "reach": float(reach),
                  "at_reach": at_reach, "at_centroid": at_centroid,
-                 "spread": [float(v) for v in spread], "tcp_at_95": doubt,
-                 "orientation_span": span}
+                 "spread": [float(v) for v in spread], "sigma_source": source, "dof": dof,
+                 "tcp_at_95": doubt, "orientation_span": span}
+    wp = worst = None
+    if at is not None and cov_json is not None:
+        wp, worst = working.predict(cov_json, R, at)
+    elif at is not None:           # the frame undetermined: nothing is known anywhere
+        wp, worst = working.describe(at.names, at.xyz, [math.inf] * len(at))
     if accepted and not doubt <= threshold:
         accepted, reason = False, tcp_reason(doubt, span, threshold)
-    elif accepted and not at_reach <= threshold:
+    elif accepted and not at_reach <= threshold and gate != "at":
         accepted, reason = False, prec.reason(at_reach, at_centroid, reach, threshold, sigma,
                                               angle_std, spread)
+    else:
+        accepted, reason = judge(accepted, reason, dict(precision), worst, gate, threshold)
     points = [PointResult(name=names[k], residual=float(resid[k]),
                           loo_residual=float(loo[k] if used[k] else resid[k]), used=bool(used[k]),
                           dx=float(e[k, 0]), dy=float(e[k, 1]), dz=float(e[k, 2]),
@@ -273,7 +308,9 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
                    rms=float(np.sqrt(np.mean(r_used ** 2))), mean=float(np.mean(r_used)),
                    max=float(np.max(r_used)), accepted=accepted, reason=reason,
                    tcp=tcp, threshold=float(threshold), min_points=int(min_points), source=path,
-                   no_exclusion=bool(no_exclusion), precision=precision)
+                   no_exclusion=bool(no_exclusion), precision=precision, covariance=cov_json,
+                   consistency=noise.consistency(e2, n_used, 9, stated), working_points=wp,
+                   worst=worst, gate=gate)
     sol.tcp_solved = {"x": tcp[0], "y": tcp[1], "z": tcp[2], "solved": True,
                       "std": {k: float(v) for k, v in zip("xyz", tcp_std)}, "at_95": doubt}
     return sol
