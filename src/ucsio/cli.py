@@ -23,6 +23,7 @@ COMMANDS = {
     "diff": "simulated vs measured frame, or every frame of two files or two backups",
     "patch": "write a frame back into a controller file",
     "batch": "solve and diff many datasets from a TOML manifest",
+    "plan": "plan a measurement: the predicted error where the robot works, what to change",
     "demo": "the whole job on shipped example cells",
 }
 

@@ -158,6 +158,21 @@ def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose]
     return [uframe.pose, oframe.pose], [mine, oframe.pose]
 
 
+def in_ucs(cf: ControllerFile, frame: Frame, found: Found) -> list[tuple[float, float, float]]:
+    """Each taught point's position in ``frame``'s own coordinates: the UCS a
+    measurement of that frame fits (``plan --at-taught``, the working points
+    of ``diff --points``). KUKA: as written (the base). ABB: a robtarget is
+    in the object frame, so a user frame's points go through its object
+    frame; an object frame's are as written."""
+    if frame.vendor != "abb" or frame.info.get("component") == "oframe":
+        return [p.xyz for p in found.points]
+    oframe = cf.frame(frame.name + ".oframe")
+    if oframe.pose is None:
+        raise UcsioError(f"{oframe.name}: the file gives no literal value; the taught points "
+                         "cannot be placed in the user frame", file=oframe.file, line=oframe.line)
+    return [oframe.pose.apply(p.xyz) for p in found.points]
+
+
 def _through(chain: list[Pose], p) -> tuple[float, float, float]:
     for pose in reversed(chain):
         p = pose.apply(p)
@@ -165,11 +180,15 @@ def _through(chain: list[Pose], p) -> tuple[float, float, float]:
 
 
 def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
-                 found: Found | None = None) -> dict[str, Any]:
+                 found: Found | None = None, solution: Any = None) -> dict[str, Any]:
     """SPEC's ``points`` (each ``name``, ``file``, ``line``, ``moved`` in mm,
     worst first) and ``points_moved`` (``count``, ``max``, ``mean``,
     ``worst``: the name of the point that moves most), with the readers'
-    ``points_warnings``."""
+    ``points_warnings``. Given the ``solution``'s JSON with its covariance,
+    the taught points are its working points: each row gets ``at_95``, the
+    predicted 95 % error of the measured frame there (mm), and
+    ``working_points`` / ``worst`` are SPEC's (plain math: diff imports no
+    numpy)."""
     if found is None:
         found = find_points(cf, frame)
     sim, meas = _chain(cf, frame, measured)
@@ -178,9 +197,25 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
         a, b = _through(sim, p.xyz), _through(meas, p.xyz)
         moved = math.dist(a, b)
         rows.append({"name": p.name, "file": p.file, "line": p.line, "moved": moved})
+    out: dict[str, Any] = {}
+    cov = None
+    if solution is not None:
+        from ..method.working import describe, from_solution, predict_plain
+        cov = from_solution(solution)
+    if cov is not None:
+        xyz = in_ucs(cf, frame, found)
+        at95 = predict_plain(cov, measured.matrix, xyz)
+        for row, q in zip(rows, at95):
+            row["at_95"] = q
+        out["working_points"], out["worst"] = describe(
+            [p.name for p in found.points], xyz, at95,
+            [{"file": p.file, "line": p.line, "moved": r["moved"]}
+             for p, r in zip(found.points, rows)])
     rows.sort(key=lambda r: (-r["moved"], r["file"], r["line"], r["name"]))
     summary = summarize(rows)
-    return {"points": rows, "points_moved": summary, "points_warnings": list(found.warnings)}
+    out.update({"points": rows, "points_moved": summary,
+                "points_warnings": list(found.warnings)})
+    return out
 
 
 def summarize(rows: list[dict]) -> dict[str, Any]:
