@@ -222,6 +222,7 @@ def render(result, patching: bool | None = None) -> str:
     # points = true in the manifest: the taught point that moves most, per entry
     points = any(r.entry.points for r in result.entries)
     solved = any(r.entry.solve_tcp for r in result.entries)   # tcp = "solve": the TCP found
+    working = any(r.entry.at for r in result.entries)        # at = "FILE": the worst working point
     rows = []
     for r in result.entries:
         d = r.delta or {}
@@ -235,6 +236,9 @@ def render(result, patching: bool | None = None) -> str:
                        "none" if pm else "-")
         if solved:
             row.append(_solved_tcp(r))
+        if working:
+            w = getattr(r.solution, "worst", None) if r.error is None else None
+            row.append(f"{w['name']} {w['at_95']:.3f}" if w else "-")
         if patching:
             row.append("REFUSED" if r.patch_error is not None else
                        "written" if r.patched is not None else "-")
@@ -244,6 +248,8 @@ def render(result, patching: bool | None = None) -> str:
         headers.append("points moved max (n)")
     if solved:
         headers.append("tcp (95 %)")
+    if working:
+        headers.append("worst working point (95 %)")
     if patching:
         headers.append("patch")
     right = {2, 3, 4, 5, 6, 7, 8, 9} | ({10} if points else set())
@@ -286,6 +292,12 @@ def render(result, patching: bool | None = None) -> str:
         out.append("")
         out.append("taught points not placed:")
         out.extend(f"  {r.entry.name}: {r.points_error}" for r in unplaced)
+    noisy = [r for r in result.entries if r.error is None and r.solution is not None
+             and (getattr(r.solution, "consistency", None) or {}).get("message")]
+    if noisy:
+        out.append("")
+        out.append("noise check (residuals far above the stated noise):")
+        out.extend(f"  {r.entry.name}: {r.solution.consistency['message']}" for r in noisy)
     unc = [r for r in result.entries if getattr(r, "uncertainty_error", None) is not None]
     if unc:
         out.append("")

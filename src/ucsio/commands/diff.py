@@ -131,7 +131,7 @@ def _git(args) -> int:
 
 
 def _one_frame(args) -> int:
-    from ..method.solution import load_solution as read_solution
+    from ..method.solution import pose_from_json, read_json
     from ..parsing.backup import load_one as load
     from ..review.diff import DEFAULT_TOLERANCE
     from ..review.compare import diff_frame
@@ -140,13 +140,15 @@ def _one_frame(args) -> int:
     if not tol > 0:
         from ..errors import UcsioError
         raise UcsioError(f"--tolerance must be positive, got {args.tolerance}")
-    measured = read_solution(args.measured)
+    data = read_json(args.measured)
+    measured = pose_from_json(data, args.measured)
     cf = load(args.files[0])
     d = diff_frame(cf, args.frame, measured, tol, oframe=args.oframe)
     if args.points:
         from ..review.patch import resolve_name
         from ..taught import points_moved
-        d.update(points_moved(cf, cf.frame(resolve_name(args.frame, args.oframe)), measured))
+        d.update(points_moved(cf, cf.frame(resolve_name(args.frame, args.oframe)), measured,
+                              solution=data))
         for w in d["points_warnings"]:
             print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.json:
@@ -182,6 +184,13 @@ def _points_text(d: dict) -> str:
             f"{pm['max']:.3f} mm (worst {pm['worst']}), mean {pm['mean']:.3f} mm")
     rows = d["points"][:WORST]
     shown = "" if len(d["points"]) <= WORST else f" (the {WORST} that move most)"
-    return head + shown + "\n" + table(
-        ["point", "file:line", "moved mm"],
-        [[r["name"], f"{r['file']}:{r['line']}", f"{r['moved']:.3f}"] for r in rows], right={2})
+    known = "worst" in d and d["worst"] is not None
+    text = head + shown + "\n" + table(
+        ["point", "file:line", "moved mm"] + (["95 % mm"] if known else []),
+        [[r["name"], f"{r['file']}:{r['line']}", f"{r['moved']:.3f}"]
+         + ([f"{r['at_95']:.3f}"] if known else []) for r in rows], right={2, 3})
+    if known:
+        w = d["worst"]
+        text += (f"\nthe measured frame is known within {w['at_95']:.3f} mm (95 %) at its "
+                 f"taught points (worst {w['name']}, {w['file']}:{w['line']})")
+    return text

@@ -44,10 +44,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--reach", type=float, default=defaults.REACH, metavar="MM",
                    help="the determinacy gate judges the 95 %% displacement of a point this far "
                         f"from the points' centroid against --threshold (default {defaults.REACH:g})")
+    add_working_point_options(p)
     add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
                    help="write the result as JSON (atomically); - for standard output "
                         "(the table then goes to stderr)")
+
+
+def add_working_point_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--at", metavar="FILE", default=None,
+                   help="working points (CSV of point, x, y, z in the UCS, mm): the solution "
+                        "predicts the 95 %% error of the frame at each")
+    p.add_argument("--gate", choices=("reach", "at"), default="reach",
+                   help="what the determinacy gate judges: the generic point --reach mm from "
+                        "the centroid (default), or the worst working point of --at")
 
 
 def add_source_options(p: argparse.ArgumentParser) -> None:
@@ -150,20 +160,28 @@ def run(args) -> int:
     else:
         raise UcsioError(solver.NO_TCP)
     solver.check_sigmas(args.sigma_laser, args.sigma_robot)
+    at = None
+    if args.at is not None:
+        from ..readers.points import read_points
+        at = read_points(args.at)
+    solver.check_gate(args.gate, at)
     meas, warnings = read_inputs(args)
     settings = dict(threshold=args.threshold, min_points=args.min_points,
                     no_exclusion=args.no_exclusion, reach=args.reach,
                     sigma_laser=args.sigma_laser, sigma_robot=args.sigma_robot)
     if solve_tcp:
         from ..method.tcp_solve import solve_joint
-        sol = solve_joint(meas, exclude=args.exclude, **settings)
+        sol = solve_joint(meas, exclude=args.exclude, at=at, gate=args.gate, **settings)
     else:
-        sol = solver.solve(meas, tcp, exclude=args.exclude, tool=args.tool, **settings)
+        sol = solver.solve(meas, tcp, exclude=args.exclude, tool=args.tool, at=at,
+                           gate=args.gate, **settings)
         if not sol.accepted:
             from ..method.tcp_solve import diagnose
             sol.diagnosis = diagnose(meas, sol, **settings)
             if sol.diagnosis:
                 sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
+    if sol.working_points is not None:
+        sol.at_source = args.at
     if args.uncertainty and solve_tcp:
         from ..method.tcp_solve import uncertainty
         sol.uncertainty = uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
@@ -231,6 +249,11 @@ def render(sol, stream=None) -> str:
         lines.append(f"precision: a point {pr['reach']:g} mm from the centroid within "
                      f"{pr['at_reach']:.3f} mm (95 %), orientation ±{pr['angle_std']:.4f} deg, "
                      f"noise {pr['sigma']:.3f} mm per axis")
+    if sol.working_points is not None:
+        lines.append(working_points_text(sol.working_points, sol.worst,
+                                         sol.at_source, sol.gate))
+    if sol.consistency and sol.consistency.get("message"):
+        lines.append(f"noise check: {sol.consistency['message']}")
     if sol.uncertainty:
         u = sol.uncertainty
         s, ci, an = u["std"], u["ci95"], u["analytical_std"]
@@ -249,6 +272,22 @@ def render(sol, stream=None) -> str:
         lines.append(paint("accepted", "pass", stream) if sol.accepted else
                      paint(f"REJECTED: {sol.reason}; measure again", "fail", stream))
     return "\n".join(lines) + "\n"
+
+
+def working_points_text(rows, worst, source=None, gate: str = "reach", shown: int = 10) -> str:
+    """The working points' predicted errors: the worst ``shown``, and the worst."""
+    from ..output import table
+
+    order = sorted(rows, key=lambda r: -r["at_95"])
+    head = (f"working points{f' from {source}' if source else ''}: {len(rows)}"
+            + (f"; the {shown} predicted worst" if len(rows) > shown else "")
+            + (" (the determinacy gate judges the worst: --gate at)" if gate == "at" else ""))
+    body = table(["point", "x", "y", "z", "95 % mm"],
+                 [[r["name"], f"{r['x']:.1f}", f"{r['y']:.1f}", f"{r['z']:.1f}",
+                   f"{r['at_95']:.3f}"] for r in order[:shown]], right={1, 2, 3, 4})
+    tail = f"worst working point: {worst['name']} within {worst['at_95']:.3f} mm (95 %)" \
+        if worst else "no working points"
+    return f"{head}\n{body}\n{tail}"
 
 
 def _solved(sol) -> str:

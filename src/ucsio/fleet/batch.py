@@ -54,7 +54,7 @@ SOURCE_KEYS = ("laser", "robot", "config", "map")
 SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj")
 ENTRY_KEYS = ("name", "measurement", *SOURCE_KEYS, *SOURCE_OPTIONS, "controller", "frame", "tcp",
               "tool", "threshold", "min_points", "tolerance", "exclude", "no_exclusion", "reach",
-              "points", "station")
+              "points", "station", "at", "gate")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("controller", "frame")
 
@@ -85,6 +85,8 @@ class Entry:
     tcp_tool: str | None = None       # tcp = "solve" with tool = "FILE:NAME": the solved TCP goes
                                       # there (--patch-dir), FILE resolved
     sources: dict | None = None       # laser, robot, config, map, laser_units, robot_tool, robot_wobj
+    at: str | None = None             # working points (CSV of point, x, y, z in the UCS), resolved
+    gate: str = "reach"               # "at": the determinacy gate judges the worst working point
 
 
 @dataclass
@@ -122,7 +124,7 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
 
 def _check_values(table: dict, where: str, path: str) -> None:
     """The type and range of every value a table gives (UcsioError)."""
-    for k in REQUIRED + ("measurement",) + SOURCE_KEYS + SOURCE_OPTIONS:
+    for k in REQUIRED + ("measurement", "at") + SOURCE_KEYS + SOURCE_OPTIONS:
         if k in table and (not isinstance(table[k], str) or not table[k].strip()):
             raise UcsioError(f"{where}: {k} must be a non-empty string, got {table[k]!r}",
                              file=path)
@@ -157,6 +159,9 @@ def _check_values(table: dict, where: str, path: str) -> None:
     for k in ("no_exclusion", "points"):
         if k in table and not isinstance(table[k], bool):
             raise UcsioError(f"{where}: {k} must be true or false", file=path)
+    if "gate" in table and table["gate"] not in ("reach", "at"):
+        raise UcsioError(f"{where}: gate must be \"reach\" or \"at\", got {table['gate']!r}",
+                         file=path)
     if "station" in table and (not isinstance(table["station"], str)
                                or not table["station"].strip()):
         raise UcsioError(f"{where}: station must be a non-empty string", file=path)
@@ -216,6 +221,10 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
     ex = merged.get("exclude", [])
     if isinstance(ex, str):
         ex = [ex]
+    gate = merged.get("gate", "reach")
+    if gate == "at" and "at" not in merged:
+        raise UcsioError(f"{label}: gate = \"at\" judges the working points: give them with "
+                         "at = \"FILE\"", file=path)
     measurement = (_resolve(base, merged["measurement"]) if sources is None
                    else sources["laser"])
     return Entry(index=i, name=name, measurement=measurement,
@@ -226,7 +235,8 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  exclude=tuple(ex), no_exclusion=merged.get("no_exclusion", False),
                  reach=float(merged.get("reach", REACH)),
                  points=merged.get("points", False), station=merged.get("station"),
-                 solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources)
+                 solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources,
+                 at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate)
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -426,6 +436,14 @@ class EntryResult:
             if s.uncertainty is not None:
                 d["uncertainty"] = s.uncertainty
                 d["uncertainty_axes"] = self.uncertainty_axes or "world"
+            if getattr(s, "consistency", None) is not None:
+                d["consistency"] = s.consistency
+            if getattr(s, "worst", None) is not None:
+                d["worst"] = s.worst
+                d["gate"] = s.gate
+                d["at"] = en.at
+                if points:
+                    d["working_points"] = s.working_points
         if self.uncertainty_error is not None:
             d["uncertainty_error"] = self.uncertainty_error
         if self.points_moved is not None:
@@ -499,6 +517,11 @@ class _Cache:
         from ..method.measurement import read_measurement
         return self._get(self.measurements, path, read_measurement)
 
+    def points(self, path: str):
+        """A working-point file (readers.points), read once per run."""
+        from ..readers.points import read_points
+        return self._get(self.measurements, ("at", path), lambda _key: read_points(path))
+
     def paired(self, sources: dict):
         """(Measurement, warnings) of an entry's laser and robot files."""
         key = tuple(sorted(sources.items()))
@@ -514,13 +537,14 @@ class _Cache:
         return self._get(self.measurements, key, read)
 
 
-def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float):
+def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float, at=None):
     """An entry with tcp = "solve": its Solution, or the UcsioError."""
     from ..method.tcp_solve import solve_joint
     try:
         return solve_joint(meas, threshold=en.threshold, min_points=en.min_points,
                            exclude=en.exclude, no_exclusion=en.no_exclusion, reach=en.reach,
-                           sigma_laser=sigma_laser, sigma_robot=sigma_robot)
+                           sigma_laser=sigma_laser, sigma_robot=sigma_robot, at=at,
+                           gate=en.gate)
     except UcsioError as exc:
         return exc
 
@@ -656,9 +680,12 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             else:
                 meas, paired = cache.paired(en.sources)
                 r.warnings = list(paired) + r.warnings    # the cache's list stays as it is
+            stage = "at"
+            at = cache.points(en.at) if en.at is not None else None
+            stage = "measurement"
             if en.solve_tcp:                # the joint model: solved on its own, below
                 joint.append(k)
-                read[k] = (None, meas)
+                read[k] = (None, meas, at)
                 continue
             datasets.append(Dataset(names=meas.names, laser=meas.laser,
                                     robot=meas.robot_points(tcp), weights=meas.weights,
@@ -666,9 +693,9 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                                     exclude=en.exclude, no_exclusion=en.no_exclusion,
                                     lines=meas.lines, path=meas.path,
                                     sigma_stated=math.hypot(sigma_laser, sigma_robot),
-                                    reach=en.reach))
+                                    reach=en.reach, at=at, gate=en.gate))
             owners.append(k)
-            read[k] = (tcp, meas)
+            read[k] = (tcp, meas, at)
         except UcsioError as exc:
             r.error, r.stage = (f"tool {en.tool or en.tcp_tool}: {exc}" if stage == "tool"
                                 else str(exc)), stage
@@ -679,7 +706,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     solved = solve_many(datasets) if datasets else []
     for k in joint:
         owners.append(k)
-        solved.append(_solve_joint(results[k].entry, read[k][1], sigma_laser, sigma_robot))
+        solved.append(_solve_joint(results[k].entry, read[k][1], sigma_laser, sigma_robot,
+                                   read[k][2]))
     t2 = time.perf_counter()
     for k, sol in zip(owners, solved):
         r = results[k]
@@ -689,6 +717,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
         if read[k][0] is not None:
             sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool
+        sol.at_source = r.entry.at
         r.solution = sol
         if not sol.accepted and not r.entry.solve_tcp:
             _diagnose(r.entry, read[k][1], sol, sigma_laser, sigma_robot)
@@ -956,7 +985,8 @@ CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "d
                "q1", "q2", "q3", "q4", "n_points", "n_used", "rms", "max", "at_reach",
                "angle_std", "sigma", "tolerance", "measurement", "controller", "frame", "error",
                "patched", "patch_error", "reason", "station", "points_count", "points_max",
-               "points_mean", "points_worst")
+               "points_mean", "points_worst", "worst_point", "worst_at_95", "consistency_ratio",
+               "consistency_p")
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -984,6 +1014,13 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
             row.update(zip(("q1", "q2", "q3", "q4"), m.q))
         if s is not None:   # solved (also when it failed afterwards, at the diff)
             row.update({k: getattr(s, k, None) for k in ("n_points", "n_used", "rms", "max")})
+            worst = getattr(s, "worst", None)
+            if worst:
+                row.update({"worst_point": worst.get("name"), "worst_at_95": worst.get("at_95")})
+            cons = getattr(s, "consistency", None)
+            if cons:
+                row.update({"consistency_ratio": cons.get("ratio"),
+                            "consistency_p": cons.get("p")})
         rows.append([row.get(c) for c in CSV_COLUMNS])
     return rows
 

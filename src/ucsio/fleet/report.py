@@ -749,6 +749,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append("<h2>Entries</h2>")
     points = any(isinstance(e.get("points_moved"), dict) for e in entries)
     solved = any(_dict(e.get("tcp_solved")) for e in entries)    # tcp = "solve" entries
+    working = any(_dict(e.get("worst")) for e in entries)        # at = "FILE" entries
     parts.append('<table id="entries"><tr><th>entry</th><th>station</th><th>status</th>'
                  '<th class="n">points used</th>'
                  '<th class="n">e<small>measurement error, mm</small></th>'
@@ -759,7 +760,9 @@ def render_report(data: dict, title: str = "ucsio batch report",
                  + ('<th class="n">taught points<small>moved up to, mm (n)</small></th>'
                     if points else "")
                  + ('<th class="n">TCP solved<small>x, y, z mm ± 95 % doubt</small></th>'
-                    if solved else "") + '</tr>')
+                    if solved else "")
+                 + ('<th class="n">worst working point<small>known within, mm (95 %)</small></th>'
+                    if working else "") + '</tr>')
     for i, e in enumerate(entries):
         d = _dict(e.get("diff"))
         status = e.get("status")
@@ -783,7 +786,8 @@ def render_report(data: dict, title: str = "ucsio batch report",
             f'<td class="n">{_f(d.get("dy"))}</td><td class="n">{_f(d.get("dz"))}</td>'
             f'<td class="n">{_f(d.get("angle"), 4)}</td>'
             + (f'<td class="n">{_points_cell(pm)}</td>' if points else "")
-            + (f'<td class="n tcp-solved">{_tcp_cell(e)}</td>' if solved else "") + '</tr>')
+            + (f'<td class="n tcp-solved">{_tcp_cell(e)}</td>' if solved else "")
+            + (f'<td class="n worst-working">{_worst_cell(e)}</td>' if working else "") + '</tr>')
     parts.append("</table>")
 
     parts.append("<h2>Details</h2>")
@@ -794,6 +798,42 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append(f'<script type="application/json" id="ucsio-data">{payload}</script>')
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
+
+
+def _worst_cell(e: dict) -> str:
+    w = _dict(e.get("worst"))
+    if not w or e.get("status") == "error":
+        return "-"
+    return f"{_e(w.get('name'))} {_f(w.get('at_95'))}"
+
+
+#: the working points an entry's details list (the predicted worst)
+WORKING_SHOWN = 10
+
+
+def _working(e: dict) -> str:
+    """An entry's working points: the predicted 95 % error of its frame where
+    the robot works, worst first."""
+    w = _dict(e.get("worst"))
+    rows = [r for r in (e.get("working_points") or []) if isinstance(r, dict)]
+    rows.sort(key=lambda r: -(_num(r.get("at_95")) or 0.0))
+    gate = ("; the determinacy gate judged the worst of them (gate = \"at\")"
+            if e.get("gate") == "at" else "")
+    note = (f'<p class="note working" style="flex-basis:100%">Where the robot works '
+            f'({_e(os.path.basename(str(e.get("at") or "")))}): the frame is known within '
+            f'{_f(w.get("at_95"))} mm (95 %) at its worst working point, {_e(w.get("name"))}'
+            f'{_e(gate)}.</p>')
+    if not rows:
+        return note
+    shown = rows[:WORKING_SHOWN]
+    more = (f"<caption>the {len(shown)} predicted worst of {len(rows)}</caption>"
+            if len(rows) > len(shown) else "")
+    body = "".join(f"<tr><td>{_e(r.get('name'))}</td><td class='n'>{_f(r.get('x'), 1)}</td>"
+                   f"<td class='n'>{_f(r.get('y'), 1)}</td><td class='n'>{_f(r.get('z'), 1)}</td>"
+                   f"<td class='n'>{_f(r.get('at_95'))}</td></tr>" for r in shown)
+    return (note + f"<table class='working-points'>{more}<tr><th>working point</th>"
+            "<th class='n'>x mm</th><th class='n'>y mm</th><th class='n'>z mm</th>"
+            "<th class='n'>known within<small>mm, 95 %</small></th></tr>" + body + "</table>")
 
 
 def _tcp_text(t: dict) -> str:
@@ -960,6 +1000,12 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
                     f'{_f(prec.get("at_reach"), 2)} mm (95 %); orientation ± '
                     f'{_f(prec.get("angle_std"), 4)}° (1σ), noise σ {_f(prec.get("sigma"), 3)} '
                     'mm per axis.</p>')
+    if _dict(e.get("worst")) and status != "error":
+        body.append(_working(e))
+    msg = _dict(e.get("consistency")).get("message")
+    if msg and status != "error":
+        body.append(f'<p class="note warning noise-check" style="flex-basis:100%">noise check: '
+                    f'{_e(msg)}</p>')
     pm = _dict(e.get("points_moved"))
     if pm:
         if pm.get("count"):
