@@ -30,9 +30,10 @@ A point at p = c + r·u moves by dt − r [u]x dθ. The worst direction u is the
 one across which the orientation is least certain (the eigenvector of the
 smallest eigenvalue of cov_θ: every other rotation axis then swings p);
 both signs of u are tried. At a working point w the displacement is
-J_w (dt, dθ) with J_w = [I, -[R (w - c)]x]; its 3x3 covariance's entries are
-quadratic in w, so ``at_points95`` evaluates many covariances (candidate
-plans) at many points as one matrix product of coefficients and monomials.
+J_w (dt, dθ) with J_w = [I, -[R (w - c)]x]; its 3x3 covariance S is
+quadratic in w, and the quantile needs only tr S and tr S² (degree 2 and 4
+in w), so ``at_points95`` evaluates many covariances (candidate plans) at
+many points as two matrix products of coefficients and monomials.
 
 Everything is batched over a leading axis (``batch`` judges a fleet at once).
 """
@@ -175,54 +176,67 @@ def shift(cov: np.ndarray, delta) -> np.ndarray:
 
 # ---------------------------------------------------------------- working points
 
-# J(p) = [I, -[p]x] = A[0] + p_x A[1] + p_y A[2] + p_z A[3]
+# J(p) = [I, -[p]x] = A[0] + p_x A[1] + p_y A[2] + p_z A[3], so the covariance
+# at p, S(p) = J K Jᵀ, is Σ over the 10 products p_k p_m (p_0 = 1) of fixed
+# 3x3 matrices S_km; the quantile needs only tr S (degree 2 in p: 10
+# monomials) and tr S² (degree 4: 35 monomials), each a dot product of
+# per-covariance coefficients with the point's monomials.
 _A = np.zeros((4, 3, 6))
 _A[0, :, :3] = np.eye(3)
 for _k in range(3):
     _A[1 + _k, :, 3:] = -skew(np.eye(3)[_k])
-_PAIRS = [(k, m) for k in range(4) for m in range(k, 4)]     # 10 monomials p_k p_m (p_0 = 1)
-_ENTRIES = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))   # xx yy zz xy xz yz
+_PAIRS = [(k, m) for k in range(4) for m in range(k, 4)]
 
 
-def point_coefficients(cov: np.ndarray) -> np.ndarray:
-    """(B, 6, 6) covariances -> (B, 6, 10): the covariance at a point p
-    (robot axes, about the translation's origin) has entries xx yy zz xy xz
-    yz = coefficients @ monomials(p)."""
+def _exponents(pair) -> tuple[int, int, int]:
+    e = [0, 0, 0]
+    for k in pair:
+        if k:
+            e[k - 1] += 1
+    return tuple(e)
+
+
+_DEG2 = [_exponents(p) for p in _PAIRS]
+_DEG4 = sorted({tuple(a + b for a, b in zip(e, f)) for e in _DEG2 for f in _DEG2},
+               key=lambda e: (sum(e), e))
+_PRODUCT = np.zeros((len(_DEG2) ** 2, len(_DEG4)))      # (i, j) -> the monomial of their product
+for _i, _e in enumerate(_DEG2):
+    for _j, _f in enumerate(_DEG2):
+        _PRODUCT[_i * len(_DEG2) + _j, _DEG4.index(tuple(a + b for a, b in zip(_e, _f)))] = 1.0
+
+
+def trace_coefficients(cov: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(B, 6, 6) covariances -> coefficients (B, 10) of tr S(p) and (B, 35)
+    of tr S(p)², S(p) the 3x3 covariance at a point p (robot axes, about the
+    translation's origin): tr S = c2 · monomials(p, 2), tr S² = c4 ·
+    monomials(p, 4)."""
     AC = np.einsum("kij,bjl->bkil", _A, cov)                    # (B, 4, 3, 6)
-    S = np.einsum("bkil,mjl->bkmij", AC, _A)                    # A_k C A_m^T (B, 4, 4, 3, 3)
-    out = np.empty((len(cov), 6, len(_PAIRS)))
-    for col, (k, m) in enumerate(_PAIRS):
-        term = S[:, k, m] if k == m else S[:, k, m] + S[:, m, k]
-        for row, (a, b) in enumerate(_ENTRIES):
-            out[:, row, col] = term[:, a, b]
-    return out
+    S = np.einsum("bkil,mjl->bkmij", AC, _A)                    # A_k C A_mᵀ (B, 4, 4, 3, 3)
+    S = np.stack([S[:, k, m] if k == m else S[:, k, m] + S[:, m, k] for k, m in _PAIRS], axis=1)
+    c2 = np.einsum("nixx->ni", S)
+    c4 = np.einsum("nixy,njyx->nij", S, S).reshape(len(cov), -1) @ _PRODUCT
+    return c2, c4
 
 
-def monomials(p) -> np.ndarray:
-    """(W, 3) points -> (10, W): 1, p_x, p_y, p_z and their products, in
-    ``point_coefficients``' order."""
+def monomials(p, degree: int = 2) -> np.ndarray:
+    """(W, 3) points -> (10, W) or, degree 4, (35, W): the monomials of
+    ``trace_coefficients``, in its order."""
     p = np.asarray(p, dtype=float)
-    one = np.ones((len(p), 1))
-    q = np.concatenate([one, p], axis=1)                        # (W, 4)
-    return np.stack([q[:, k] * q[:, m] for k, m in _PAIRS])
+    powers = [np.ones((3, len(p))), p.T]              # powers[k][axis] = p_axis ** k
+    for k in range(2, degree + 1):
+        powers.append(powers[-1] * p.T)
+    return np.stack([powers[e[0]][0] * powers[e[1]][1] * powers[e[2]][2]
+                     for e in (_DEG2 if degree == 2 else _DEG4)])
 
 
-def _point_q(entries: np.ndarray, sigma_stated, sigma_residual, dof) -> np.ndarray:
-    """(B, 6, W) covariance entries per unit noise -> (B, W) 95 % displacements."""
-    xx, yy, zz, xy, xz, yz = (entries[:, k] for k in range(6))
-    mean = xx + yy + zz
-    var = 2.0 * (xx * xx + yy * yy + zz * zz + 2.0 * (xy * xy + xz * xz + yz * yz))
-    s_stated = np.asarray(sigma_stated, float).reshape(-1, 1)
-    q = s_stated * _q95(mean, var)
+def _quantile(mean, tr2, sigma_stated, sigma_residual, dof) -> np.ndarray:
+    """(B, W) tr S and tr S² per unit noise -> 95 % displacements."""
+    var = 2.0 * tr2
+    q = np.asarray(sigma_stated, float).reshape(-1, 1) * _q95(mean, var)
     s_res = np.asarray(sigma_residual, float).reshape(-1, 1)
     if np.any(s_res > 0):
         q = np.maximum(q, s_res * _q95(mean, var, np.asarray(dof, float).reshape(-1, 1)))
     return q
-
-
-#: (covariances x points) evaluated at once: about 6 arrays of this many
-#: floats live at a time, a few tens of MB
-_CHUNK = 400_000
 
 
 def at_points95(cov: np.ndarray, p, sigma_stated=1.0, sigma_residual=0.0,
@@ -230,30 +244,61 @@ def at_points95(cov: np.ndarray, p, sigma_stated=1.0, sigma_residual=0.0,
     """The 95 % displacement (B, W) at the points p (W, 3) (robot axes,
     relative to the translation's origin) of B covariances (B, 6, 6) per
     unit noise."""
-    coef = point_coefficients(cov)
-    mono = monomials(p)
-    return _point_q(coef @ mono, sigma_stated, sigma_residual, dof)
+    c2, c4 = trace_coefficients(cov)
+    return _quantile(c2 @ monomials(p, 2), c4 @ monomials(p, 4), sigma_stated, sigma_residual,
+                     dof)
 
 
-def worst_at_points95(cov: np.ndarray, p, sigma_stated=1.0, sigma_residual=0.0,
-                      dof=INF) -> tuple[np.ndarray, np.ndarray]:
+#: (covariances x points) evaluated at once: a few arrays of this many
+#: floats live at a time, a few MB each
+_CHUNK = 250_000
+
+
+def _cube(h):
+    return (1.0 - h + Z95 * math.sqrt(h)) ** 3
+
+
+#: q² / tr S lies between these (tr S² between (tr S)²/3 and (tr S)², so h =
+#: 2 tr S² / 9 (tr S)² between 2/27 and 2/9, where (1 - h + z√h)³ rises):
+#: a point whose trace is below KEEP times the largest cannot be the worst
+KEEP = _cube(2.0 / 27.0) / _cube(2.0 / 9.0) * (1.0 - 1e-9)
+
+
+def worst_at_points95(cov: np.ndarray, p, sigma_stated=1.0) -> tuple[np.ndarray, np.ndarray]:
     """(largest 95 % displacement (B,), index of its point (B,)) over the
-    points p (W, 3) for each of B covariances: ``at_points95`` in chunks of
-    covariances, never the whole (B, W) at once."""
-    coef = point_coefficients(cov)
-    mono = monomials(p)
-    B, W = len(cov), mono.shape[1]
+    points p (W, 3) for each of B covariances with a known noise, in chunks
+    of covariances, never the whole (B, W) at once. Per chunk: tr S at every
+    point (one matrix product); tr S² only at the points whose trace can
+    still make them the worst (``KEEP``; a few percent of a cell's working
+    points); q²/σ² = m (1 - h + z√h)³ (``quantile.norm95_sq`` with h = 2 tr
+    S² / 9 m²) ranks them, the square root taken of the worst alone."""
+    c2, c4 = trace_coefficients(cov)
+    m2, m4 = monomials(p, 2), monomials(p, 4)
+    B, W = len(cov), m2.shape[1]
     step = max(1, _CHUNK // max(W, 1))
-    worst = np.empty(B)
     where = np.empty(B, dtype=np.intp)
-    ss = np.broadcast_to(np.asarray(sigma_stated, float), (B,))
-    sr = np.broadcast_to(np.asarray(sigma_residual, float), (B,))
-    nu = np.broadcast_to(np.asarray(dof, float), (B,))
-    for a in range(0, B, step):
-        b = min(B, a + step)
-        q = _point_q(coef[a:b] @ mono, ss[a:b], sr[a:b], nu[a:b])
-        where[a:b] = np.argmax(q, axis=1)
-        worst[a:b] = q[np.arange(b - a), where[a:b]]
+    rank = np.empty(B)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for a in range(0, B, step):
+            b = min(B, a + step)
+            m = c2[a:b] @ m2
+            cols = np.flatnonzero((m >= KEEP * m.max(axis=1, keepdims=True)).any(axis=0))
+            m = m[:, cols]
+            h = c4[a:b] @ m4[:, cols]
+            h *= 2.0 / 9.0
+            h /= m
+            h /= m
+            f = np.sqrt(h)
+            f *= Z95
+            f -= h
+            f += 1.0
+            h = f * f
+            h *= f
+            h *= m                                              # q² per unit noise
+            j = np.argmax(h, axis=1)
+            where[a:b] = cols[j]
+            rank[a:b] = h[np.arange(b - a), j]
+    worst = np.asarray(sigma_stated, float) * np.sqrt(np.where(rank > 0, rank, 0.0))
     return worst, where
 
 
