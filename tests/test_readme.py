@@ -79,3 +79,40 @@ def test_commands_section_shows_a_backup_to_backup_review():
     assert "ucsio diff   backup_2026-11-30/ backup_2026-12-01/ --exit-code" in commands
     assert "$ ucsio diff backup_old/ backup_new/" in commands
     assert "files:  3 changed, 1 added, 1 removed" in commands
+
+
+def test_planning_walk_through_runs_as_written(tmp_path):
+    """Issue 20 point 7: the README's "Planning a measurement" walk-through,
+    line by line in bash on the demo cells; each exit status as annotated
+    (`# exit N`, else 0), and the first plan's output as the README shows it."""
+    import os
+    import subprocess
+    import sys
+
+    section = README.split("## Planning a measurement", 1)[1].split("\n## ", 1)[0]
+    script = re.findall(r"```sh\n(.*?)```", section, re.S)[0]
+    shown = re.findall(r"```text\n(.*?)```", section, re.S)[0]
+    lines = [f'ucsio() {{ "{sys.executable}" -m ucsio "$@"; }}']
+    expected = []
+    for k, line in enumerate(script.splitlines()):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        m = re.search(r"\s+#\s*(exit (\d))?.*$", line)
+        code = int(m.group(2)) if m and m.group(2) else 0
+        command = line[:m.start()] if m else line
+        expected.append((command, code))
+        lines += [f'echo "@@start {len(expected) - 1}"', command, f'echo "@@rc $?"']
+    env = dict(os.environ)
+    res = subprocess.run(["bash", "-c", "\n".join(lines)], cwd=tmp_path, env=env,
+                         capture_output=True, text=True, timeout=600)
+    parts = re.split(r"@@start (\d+)\n", res.stdout)[1:]
+    outputs = {int(parts[i]): parts[i + 1] for i in range(0, len(parts), 2)}
+    assert len(outputs) == len(expected), res.stderr
+    first_fail = None
+    for i, (command, code) in enumerate(expected):
+        out, rc = outputs[i].rsplit("@@rc ", 1)
+        assert int(rc) == code, (command, out, res.stderr)
+        if code == 1 and first_fail is None:
+            first_fail = out
+    assert first_fail == shown
+    assert "Planning a measurement" in README and "bench_plan.py" in README
