@@ -381,3 +381,15 @@ def test_the_batched_worst_is_the_worst_of_every_point(seed, thin, far):
     assert worst == pytest.approx(direct.max(axis=1), rel=1e-9)
     assert direct[np.arange(6), where] == pytest.approx(direct.max(axis=1), rel=1e-9)
     assert precision.at_points95(K, pts, 0.05) == pytest.approx(direct, rel=1e-9)
+
+
+def test_the_python_api_plans_and_predicts(tmp_path):
+    from ucsio import api
+
+    laser = np.random.default_rng(1).uniform(-0.5, 0.5, (8, 3)) * (1200, 800, 300)
+    plan = write_plan(tmp_path / "p.csv", laser)
+    at = write_points(tmp_path / "at.csv", [[2000, 0, 0], [0, 1500, 200]])
+    got = api.plan(plan, at=at, threshold=0.2)
+    rc, cli = plan_json(plan, "--at", at, "--threshold", "0.2")
+    assert got["worst"] == cli["worst"] and got["verdict"] == cli["verdict"]
+    assert got["suggest"] == cli["suggest"]

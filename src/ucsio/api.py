@@ -57,9 +57,14 @@ def solve(csv: PathLike, tcp, **options):
     ``.as_dict()``). ``tcp``: the reflector in flange coordinates (x, y, z) mm,
     no default (SPEC: never a silent 0,0,0), or ``"solve"`` to estimate it
     with the frame (``ucsio.method.tcp_solve``). ``options``: threshold,
-    min_points, exclude, no_exclusion, reach, sigma_laser, sigma_robot."""
+    min_points, exclude, no_exclusion, reach, sigma_laser, sigma_robot, at
+    (working points: a CSV path, or ``readers.points.Points``), gate
+    ("reach" or "at")."""
     from .method.measurement import read_measurement
     from .method.solve import solve as _solve
+    if isinstance(options.get("at"), (str, os.PathLike)):
+        from .readers.points import read_points
+        options["at"] = read_points(options["at"])
     if isinstance(tcp, str) and tcp.strip().casefold() == "solve":
         from .method.tcp_solve import solve_joint   # the TCP solved with the frame
         return solve_joint(read_measurement(csv), **options)
@@ -97,7 +102,9 @@ def diff_frame(file: PathLike | ControllerFile, name: str, solution: Any,
     """SPEC's one-frame diff (``ucsio diff FILE --frame NAME --measured``):
     name, simulated, measured, dx dy dz da db dc angle dist dt_mean, group, pass.
     ``points`` (``--points``) adds ``points``, ``points_moved`` and
-    ``points_warnings``: how far each position taught in the frame moves."""
+    ``points_warnings``: how far each position taught in the frame moves;
+    with a solution that keeps its covariance (a solve result, a
+    SOLUTION.json), each point's ``at_95`` and ``working_points``, ``worst``."""
     from .review.patch import resolve_name
     from .review.compare import diff_frame as _diff_frame
 
@@ -106,8 +113,45 @@ def diff_frame(file: PathLike | ControllerFile, name: str, solution: Any,
     d = _diff_frame(cell, name, pose, tolerance, oframe=oframe)
     if points:
         from .taught import points_moved
-        d.update(points_moved(cell, cell.frame(resolve_name(name, oframe)), pose))
+        data = solution
+        if hasattr(solution, "as_dict"):
+            data = solution.as_dict()
+        elif isinstance(solution, (str, os.PathLike)):
+            from .method.solution import read_json
+            data = read_json(os.fspath(solution))
+        d.update(points_moved(cell, cell.frame(resolve_name(name, oframe)), pose,
+                              solution=data if isinstance(data, dict) else None))
     return d
+
+
+def plan(plan_csv: PathLike, *, at: Any = None, candidates: Any = None, tcp: Any = None,
+         threshold: float = 1.5, reach: float = 1000.0, sigma_laser: float = 0.015,
+         sigma_robot: float = 0.05, min_points: int = 6) -> dict[str, Any]:
+    """Plan a measurement (``ucsio plan``): the predicted 95 % error at the
+    working points ``at`` (a CSV path or ``readers.points.Points``; None: the
+    generic point ``reach`` from the centroid), the verdict and ``suggest``
+    (add, drop) from ``candidates`` (the same; None: the box's corners), as
+    the JSON of ``plan --json``. ``tcp="solve"`` plans the TCP with the
+    frame from the plan's robot_* columns."""
+    from .commands.plan import read_plan
+    from .method.plan import plan as _plan
+    from .readers.points import read_points
+
+    class _Args:                       # read_plan's options, as the command line gives them
+        robot = config = map = None
+        robot_tool, robot_wobj = "tool0", "wobj0"
+    args = _Args()
+    args.plan = os.fspath(plan_csv)
+    joint = isinstance(tcp, str) and tcp.strip().casefold() == "solve"
+    planned, warnings = read_plan(args, joint)
+    at = read_points(at) if isinstance(at, (str, os.PathLike)) else at
+    if isinstance(candidates, (str, os.PathLike)):
+        candidates = read_points(candidates, "candidate file")
+    out = _plan(planned, joint=joint, at=at, candidates=candidates, threshold=threshold,
+                reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot,
+                min_points=min_points)
+    out["warnings"] = warnings + out["warnings"]
+    return out
 
 
 def diff_files(old: PathLike | ControllerFile | None,
