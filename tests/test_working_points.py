@@ -310,3 +310,17 @@ def test_noise_check_compares_the_residuals_with_the_stated_noise(tmp_path):
         ps.append(solve_points([f"P{i}" for i in range(8)], laser, robot,
                                no_exclusion=True).consistency["p"])
     assert 0.4 < np.mean(ps) < 0.6 and np.mean(np.array(ps) < 0.01) < 0.04
+
+
+@pytest.mark.parametrize("ending", ["\n", "\r\n", "\r", "\r\r\n"])
+def test_working_point_files_follow_the_one_rule_for_line_endings(tmp_path, ending):
+    from ucsio.readers.points import read_points
+
+    f = tmp_path / "at.csv"
+    f.write_bytes(ending.join(["# where the robot works", "point;x;y;z", "A;1,5;2;3",
+                               "B;4;5;6", ""]).encode())
+    got = read_points(f)
+    assert got.names == ["A", "B"] and got.lines == [3, 4] and got.xyz[0].tolist() == [1.5, 2, 3]
+    f.write_bytes(ending.join(["point,x,y,z", "A,1,2,3", "B,4,5,6,7", ""]).encode())
+    with pytest.raises(Exception, match=r":3:9: 5 fields"):
+        read_points(f).names

@@ -25,6 +25,7 @@ import numpy as np
 from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
 from ..files import read_bytes
+from ..parsing.document import text_lines
 from .laser import _header_key
 from .text import decode, split
 
@@ -51,7 +52,7 @@ def read_points(path: str | os.PathLike, what: str = "working-point file") -> Po
 def parse_points(text: str, path: str = "<points>") -> Points:
     rows = []
     header = None
-    for lineno, line in enumerate(text.splitlines(), start=1):
+    for lineno, line in enumerate(text_lines(text), start=1):      # the one rule for line ends
         s = line.strip()
         if not s or s.startswith("#"):
             continue
