@@ -121,8 +121,20 @@ def test_gate_at_with_a_solved_tcp(tmp_path):
     rc, out, _ = run("solve", csv_path, "--tcp", "solve", "--at", far, "--json")
     d = json.loads(out)
     assert rc == 0 and d["worst"]["at_95"] > 1.5 and d["consistency"]["dof"] == 3 * 8 - 9
+    assert d["tcp_at_95"] == d["tcp"]["at_95"] == d["precision"]["tcp_at_95"]
+    assert d["orientation_span"] == d["precision"]["orientation_span"] > 30
     rc, out, _ = run("solve", csv_path, "--tcp", "solve", "--at", far, "--gate", "at", "--json")
     assert rc == 1 and "where the robot works" in json.loads(out)["reason"]
+    # diff --points with that solution: the taught points' errors, the TCP's doubt and span
+    sol = tmp_path / "sol.json"
+    assert run("solve", csv_path, "--tcp", "solve", "-o", sol)[0] == 0
+    shutil.copytree(FIXTURES / "taught" / "kuka" / "KRC", tmp_path / "KRC")
+    config = next((tmp_path / "KRC").rglob("$config.dat"))
+    rc, out, _ = run("diff", config, "--frame", "BASE_DATA[3]", "--measured", sol, "--points",
+                     "--json", "--tolerance", "1e9")
+    got = json.loads(out)
+    assert rc == 0 and got["worst"]["at_95"] > 0 and got["tcp_at_95"] == d["tcp_at_95"]
+    assert got["orientation_span"] == d["orientation_span"]
 
 
 @pytest.mark.parametrize("body, where, words", [

@@ -137,6 +137,9 @@ class Solution:
             d["diagnosis"] = self.diagnosis
         if self.consistency is not None:
             d["consistency"] = self.consistency
+        if self.tcp_solved is not None and self.precision:       # SPEC's keys, beside precision's
+            d["tcp_at_95"] = self.precision.get("tcp_at_95")
+            d["orientation_span"] = self.precision.get("orientation_span")
         if self.working_points is not None:
             d["working_points"] = self.working_points
             d["worst"] = self.worst

@@ -207,6 +207,10 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
         at95 = predict_plain(cov, measured.matrix, xyz)
         for row, q in zip(rows, at95):
             row["at_95"] = q
+        tcp = solution.get("tcp")
+        if isinstance(tcp, dict) and tcp.get("solved") is True:     # a TCP solved with the frame
+            out["tcp_at_95"] = solution.get("tcp_at_95", tcp.get("at_95"))
+            out["orientation_span"] = solution.get("orientation_span")
         out["working_points"], out["worst"] = describe(
             [p.name for p in found.points], xyz, at95,
             [{"file": p.file, "line": p.line, "moved": r["moved"]}
