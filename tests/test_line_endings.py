@@ -168,3 +168,25 @@ def test_patch_of_a_mixed_file_changes_only_the_numbers(tmp_path, seed):
         [new[s - 1:s] for s in line_starts(new.decode())[1:]]
     back = krl.parse(Document(new, path)).frame("fixture")
     assert back.pose.as_dict()["x"] == pytest.approx(1501.5) and back.line == 5
+
+
+@pytest.mark.parametrize("ending", ENDINGS)
+def test_measurement_files_count_lines_by_the_same_rule(tmp_path, ending):
+    """A bad number on line 3 of a measurement CSV and of a tracker export is
+    named on line 3, whatever ends the lines (str.splitlines counted CR CR LF
+    as two)."""
+    from ucsio.method.measurement import read_measurement
+    from ucsio.readers.laser import read_laser
+
+    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c",
+            "P1,0,0,0,100,0,0,0,0,0", "P2,1,x,0,101,0,0,0,0,0"]
+    path = tmp_path / "m.csv"
+    path.write_bytes(ending.join(rows).encode() + ending.encode())
+    with pytest.raises(UcsioError) as e:
+        read_measurement(path)
+    assert e.value.line == 3, str(e.value)
+    table = tmp_path / "t.txt"
+    table.write_bytes(ending.join(["P1 0 0 0", "P2 1 0 0", "P3 1 x 0"]).encode())
+    with pytest.raises(UcsioError) as e:
+        read_laser(table)
+    assert e.value.line == 3, str(e.value)

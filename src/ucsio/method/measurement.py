@@ -38,6 +38,7 @@ from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
 from ..files import read_bytes
 from ..geometry.arrays import flange_matrices
+from ..parsing.document import text_lines
 from ..readers.text import decode
 
 FORMS = {
@@ -160,7 +161,7 @@ def parse_measurement(text: str, path: str = "<measurement>",
     rows: list[tuple[int, list[tuple[str, int]]]] = []
     sep = ","
     hinted = False
-    for lineno, line in enumerate(text.splitlines(), start=1):
+    for lineno, line in enumerate(text_lines(text), start=1):   # the one rule for line ends
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue

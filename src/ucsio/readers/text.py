@@ -9,6 +9,7 @@ import math
 import re
 
 from ..errors import UcsioError
+from ..parsing.document import text_lines
 
 #: candidate separators in the order they are tried; None is "runs of
 #: spaces or tabs" (fixed-width or whitespace-separated exports)
@@ -30,7 +31,7 @@ def content_lines(text: str) -> list[tuple[int, str]]:
     """(line number, text) of the lines that hold data or a header: blank
     lines and ``#`` or ``//`` comment lines are left out."""
     out = []
-    for lineno, line in enumerate(text.splitlines(), start=1):
+    for lineno, line in enumerate(text_lines(text), start=1):   # the one rule for line ends
         s = line.strip()
         if s and not s.startswith(("#", "//")):
             out.append((lineno, line))
