@@ -17,13 +17,14 @@ def add_uncertainty_options(p, what: str) -> None:
 
 def load_inputs(paths: list[str], full: bool = False):
     """Controller files, folders and archives -> ((source, parsed file) pairs,
-    errors). One plain file that cannot be read is raised as it is (SPEC's
-    single error); with many, each failure is collected and the rest read."""
+    errors, files listed as not read). One plain file that cannot be read is
+    raised as it is (SPEC's single error); with many, each failure is
+    collected and the rest read."""
     from ..parsing.backup import load_all, single_input
-    parsed, errors = load_all(paths, full=full)
+    parsed, errors, not_read = load_all(paths, full=full)
     if errors and single_input(paths):
         raise errors[0]
-    return parsed, errors
+    return parsed, errors, not_read
 
 
 def report_failures(errors, what: str = "file") -> None:

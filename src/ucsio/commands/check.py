@@ -6,9 +6,11 @@ failed round trip; an "info" (legal code worth knowing, such as a PERS whose
 value another module gives) does not fail the check.
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
-that cannot be read (an encrypted module, a syntax error) is listed with its
-error and every other file is still checked; exit 2 at the end.
+.prg .dat .va .dg .ls below it) or a .zip archive (members named
+ARCHIVE.zip!path). A file that cannot be read (an encrypted module, a syntax
+error) is listed with its error and every other file is still checked; exit 2
+at the end. A FANUC backup's binary files (.tp .sv .vr) are listed as not
+read (full and json), which is no finding.
 
 --output-format FORMAT (ruff's names) prints the findings for a person or a
 CI system: full (the default: each file, its findings, a total), concise
@@ -25,7 +27,8 @@ from ..output import emit_json
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", metavar="FILE",
-                   help="RAPID module, KRL .dat file, backup folder or .zip archive")
+                   help="RAPID module, KRL .dat file, FANUC .va/.ls/.dg file, backup folder or "
+                        ".zip archive")
     p.add_argument("--ignore", action="append", default=[], metavar="CODE,...",
                    help="silence these lint codes (comma-separated, repeatable)")
     from ..findings import FORMATS
@@ -52,10 +55,13 @@ def round_trip(cf) -> bool:
 
 def check_parsed(cf, ignore: frozenset = frozenset()) -> dict:
     doc = cf.document
-    return {"file": cf.path, "vendor": cf.vendor,
-            "encoding": doc.encoding + ("-bom" if doc.bom else ""),
-            "frames": len(cf.frames), "round_trip": round_trip(cf),
-            "lints": [l.as_dict() for l in cf.lints if l.code not in ignore]}
+    out = {"file": cf.path, "vendor": cf.vendor,
+           "encoding": doc.encoding + ("-bom" if doc.bom else ""),
+           "frames": len(cf.frames), "round_trip": round_trip(cf),
+           "lints": [l.as_dict() for l in cf.lints if l.code not in ignore]}
+    if "kind" in cf.extra:      # FANUC: sysframe, program, posreg, listing, ...
+        out["kind"] = cf.extra["kind"]
+    return out
 
 
 def ignored_codes(values: list[str]) -> frozenset:
@@ -99,11 +105,11 @@ def run(args) -> int:
     ignore = ignored_codes(args.ignore)
     if fmt in ("full", "json"):
         # one plain file that cannot be read is SPEC's single error, as ever
-        parsed, errors = load_inputs(args.files, full=True)
+        parsed, errors, not_read = load_inputs(args.files, full=True)
     else:
         # the formats CI reads list it as a finding, like any file not read
         from ..parsing.backup import load_all
-        parsed, errors = load_all(args.files, full=True)
+        parsed, errors, not_read = load_all(args.files, full=True)
     results = [check_parsed(cf, ignore) for _, cf in parsed]
     bad = any(not r["round_trip"] or any(l["severity"] != "info" for l in r["lints"])
               for r in results)
@@ -112,6 +118,7 @@ def run(args) -> int:
         from ..findings import error_code
         emit_json({"files": results,
                    "errors": [{**e.as_dict(), "code": error_code(e)} for e in errors],
+                   "not_read": [{"file": s.name, "reason": s.reason} for s in not_read],
                    "ok": status == 0})
         report_failures(errors)
         return status
@@ -123,16 +130,21 @@ def run(args) -> int:
     for r in results:
         state = paint("round trip ok", "pass") if r["round_trip"] else \
             paint("ROUND TRIP FAILED", "fail")
-        print(f"{r['file']}: {r['vendor']}, {r['encoding']}, {r['frames']} frames, {state}")
+        vendor = r["vendor"] + (f" {r['kind']}" if r.get("kind") else "")
+        print(f"{r['file']}: {vendor}, {r['encoding']}, {r['frames']} frames, {state}")
         for l in r["lints"]:
             sev = paint(l["severity"], "fail" if l["severity"] == "warning" else "info")
             print(f"{r['file']}:{l['line']}:{l['col']}: {sev}: {l['code']}: {l['message']}")
     for e in errors:    # listed with the others: an unreadable file is part of the check
         print(f"{e.file}: {paint('NOT READ', 'fail')}: {e.message}"
               + (f" (line {e.line}, col {e.col})" if e.line is not None else ""))
-    if len(results) + len(errors) > 1:
+    for s in not_read:
+        print(f"{s.name}: not read: {s.reason}")
+    if len(results) + len(errors) + len(not_read) > 1:
         n_warn = sum(l["severity"] == "warning" for r in results for l in r["lints"])
-        print(f"{len(results) + len(errors)} files: {len(results)} read, {len(errors)} not read, "
+        binary = f", {len(not_read)} binary (not read)" if not_read else ""
+        print(f"{len(results) + len(errors) + len(not_read)} files: {len(results)} read, "
+              f"{len(errors)} not read{binary}, "
               f"{sum(not r['round_trip'] for r in results)} round trips failed, {n_warn} warnings")
     report_failures(errors)
     return status

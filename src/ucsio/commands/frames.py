@@ -1,10 +1,14 @@
 """List every frame in controller files: ABB wobjdata (uframe and NAME.oframe),
-tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data.
+tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data;
+FANUC user and tool frames of sysframe.va (UF3, UT2, UF3@2 for group 2) and
+those a TP program (.ls) sets.
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat below it) or a .zip archive (members named ARCHIVE.zip!path). A file
-that cannot be read is reported on stderr (with --json also in "errors") and
-the others are still listed; exit 2 at the end if any could not be read.
+.prg .dat .va .dg .ls below it) or a .zip archive (members named
+ARCHIVE.zip!path). A file that cannot be read is reported on stderr (with
+--json also in "errors") and the others are still listed; exit 2 at the end
+if any could not be read. A FANUC backup's binary files (.tp .sv .vr) are
+counted as not read (--json: "not_read").
 
 Unset frames (KUKA configuration entries whose six values are all 0 and that
 have no name: the controller's defaults, which fill most of a $config.dat)
@@ -17,7 +21,8 @@ from ..output import emit_json, fmt, table
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", metavar="FILE",
-                   help="RAPID module, KRL .dat file, backup folder or .zip archive")
+                   help="RAPID module, KRL .dat file, FANUC .va/.ls file, backup folder or "
+                        ".zip archive")
     p.add_argument("--all", action="store_true",
                    help="also list unset frames (KUKA entries all 0 and without a name)")
 
@@ -26,23 +31,27 @@ def run(args) -> int:
     from . import load_inputs, report_failures
     from ..review.unset import as_dict, is_set
 
-    parsed, errors = load_inputs(args.files)
+    parsed, errors, not_read = load_inputs(args.files)
     status = 2 if errors else 0
     if args.json:
         emit_json({"frames": [as_dict(f, c) for _, c in parsed for f in c.frames],
                    "files": [c.path for _, c in parsed],      # every file read, frames or not
-                   "errors": [e.as_dict() for e in errors]})
+                   "errors": [e.as_dict() for e in errors],
+                   "not_read": [{"file": s.name, "reason": s.reason} for s in not_read]})
         report_failures(errors)
         return status
     frames = [f for _, c in parsed for f in c.frames if args.all or is_set(f, c)]
     unset = sum(len(c.frames) for _, c in parsed) - len(frames)
+    # FANUC alone: W, P, R as the controller writes them (a = r, b = p, c = w)
+    fanuc = bool(frames) and all(f.vendor == "fanuc" for f in frames)
     rows = []
     for f in frames:
         p = f.pose
         if p is None:
             nums = ["-"] * 6 + ["-"]
         else:
-            nums = [fmt(v) for v in (p.x, p.y, p.z)] + [fmt(v, 4) for v in p.abc] + \
+            angles = p.wpr if fanuc else p.abc
+            nums = [fmt(v) for v in (p.x, p.y, p.z)] + [fmt(v, 4) for v in angles] + \
                    ["[" + ", ".join(f"{v:.6f}" for v in p.q) + "]"]
         ref = f.reference
         role = f.info.get("role")
@@ -50,12 +59,28 @@ def run(args) -> int:
             ref += f" ({role.replace('_', ' ')})"
         rows.append([f.name, f.type, f.label or "", ref, *nums, f"{f.file}:{f.line}"])
     if rows:
-        print(table(["name", "type", "label", "ref", "x", "y", "z", "a", "b", "c", "q", "at"],
+        angles = ["w", "p", "r"] if fanuc else ["a", "b", "c"]
+        print(table(["name", "type", "label", "ref", "x", "y", "z", *angles, "q", "at"],
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
         print("no set frames" if unset else "no frames")
     if unset:
         print(f"{unset} unset frame{'s' if unset != 1 else ''} not listed (all six values 0 and "
               "no name: the controller's defaults; --all lists them)")
+    if not_read:
+        print(_not_read_line(not_read))
     report_failures(errors)
     return status
+
+
+def _not_read_line(not_read) -> str:
+    """'3 binary files not read (2 .tp, 1 .sv): ...'"""
+    import os
+    counts: dict[str, int] = {}
+    for s in not_read:
+        suffix = os.path.splitext(s.rel)[1].lower()
+        counts[suffix] = counts.get(suffix, 0) + 1
+    what = ", ".join(f"{n} {k}" for k, n in sorted(counts.items()))
+    n = len(not_read)
+    return (f"{n} binary FANUC file{'s' if n != 1 else ''} not read ({what}): ucsio reads "
+            "their ASCII twins (.ls, .va)")

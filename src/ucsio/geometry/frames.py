@@ -36,6 +36,12 @@ class Pose(Value):
         return cls(float(x) + 0.0, float(y) + 0.0, float(z) + 0.0, rot.abc_to_quat(*abc), abc)
 
     @classmethod
+    def from_wpr(cls, x, y, z, w, p, r) -> "Pose":
+        """FANUC W, P, R: R = Rz(R) Ry(P) Rx(W), the KUKA matrix with A=R,
+        B=P, C=W (so ``abc`` is (R, P, W) as written)."""
+        return cls.from_abc(x, y, z, r, p, w)
+
+    @classmethod
     def from_matrix(cls, m, t) -> "Pose":
         q = rot.matrix_to_quat(m)
         return cls(float(t[0]), float(t[1]), float(t[2]), q, rot.quat_to_abc(q))
@@ -108,14 +114,15 @@ class Frame(Value):
                  reference: str = "world", label: str | None = None,
                  numbers: dict[str, Number] | None = None, info: dict[str, Any] | None = None,
                  document: Document | None = None):
-        self.name = name            # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]'
-        self.vendor = vendor        # 'abb' | 'kuka'
-        self.type = type            # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA', 'FRAME'
+        self.name = name            # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]', 'UF3@2'
+        self.vendor = vendor        # 'abb' | 'kuka' | 'fanuc'
+        self.type = type            # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA',
+        #                             'FRAME', 'UFRAME', 'UTOOL'
         self.pose = pose            # None where the file gives no (complete) value
         self.file = file
         self.line = line
         self.reference = reference  # 'world', 'flange', 'uframe', 'wrist', 'machine', ...
-        self.label = label          # KUKA BASE_NAME / TOOL_NAME
+        self.label = label          # KUKA BASE_NAME / TOOL_NAME, FANUC comment
         # component name ('x','y','z','q1'..'q4' or 'a','b','c') -> Number in the document
         self.numbers = numbers if numbers is not None else {}
         self.info = info if info is not None else {}   # robhold, ufprog, ufmec, load, storage, ...

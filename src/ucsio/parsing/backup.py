@@ -1,9 +1,12 @@
 """Whole backups: the controller files in folders and ``.zip`` archives.
 
 A command given a folder (an ABB backup or ``RAPID`` tree, a KUKA ``KRC``
-tree) reads every ``.mod .modx .sys .sysx .prg .dat`` below it; given a
-``.zip`` (a KUKA archive) it reads the same members straight from the archive
-with the standard library, never extracting anything to disk. A member is
+tree, a FANUC backup) reads every ``.mod .modx .sys .sysx .prg .dat`` and
+``.va .dg .ls`` below it (any case); given a ``.zip`` (a KUKA archive) it
+reads the same members straight from the archive with the standard library,
+never extracting anything to disk. A FANUC backup's binary files (``.tp``
+programs, ``.sv`` system and ``.vr`` variable files) are listed as not read
+(``Binary``): ucsio reads their ASCII twins. A member is
 named ``ARCHIVE.zip!path/in/archive``, and that name is accepted back as an
 input.
 
@@ -19,7 +22,9 @@ from ..errors import UcsioError
 from ..values import Value
 
 # SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
-BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat")
+BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls")
+# SPEC: a FANUC backup's binary files, listed as not read
+BINARY_SUFFIXES = (".tp", ".sv", ".vr")
 MEMBER_MARK = "!"
 
 
@@ -48,6 +53,21 @@ class Source(Value):
         """The parsed file (a UcsioError naming the file when it cannot be read)."""
         from .controller import parse
         return parse(self.document(), full=full)
+
+
+class Binary(Source):
+    """A file of a backup ucsio lists but does not read: a FANUC binary
+    (.tp, .sv, .vr), whose ASCII twin (.ls, .va) is read instead."""
+
+    __slots__ = ()
+
+    @property
+    def reason(self) -> str:
+        what = {".tp": "a TP program", ".sv": "a system file", ".vr": "a variable file"}
+        suffix = os.path.splitext(self.rel)[1].lower()
+        twin = ".ls" if suffix == ".tp" else ".va"
+        return f"binary FANUC file ({what.get(suffix, 'binary')}; its ASCII {twin} is what " \
+               "ucsio reads)"
 
 
 class Failure(Value):
@@ -113,10 +133,11 @@ def folder_sources(folder: str) -> list[Source]:
     for root, dirs, files in os.walk(folder, onerror=None):
         dirs.sort()
         for f in files:
-            if f.lower().endswith(BACKUP_SUFFIXES):
+            kind = _kind(f)
+            if kind is not None:
                 full = os.path.join(root, f)
                 rel = os.path.relpath(full, folder).replace(os.sep, "/")
-                found.append(Source(full, rel, path=full))
+                found.append(kind(full, rel, path=full))
     found.sort(key=lambda s: s.rel.casefold())
     return found
 
@@ -140,9 +161,9 @@ def archive_sources(archive: str) -> list[Source]:
     zf = _open_zip(archive)
     names = [i.filename for i in zf.infolist() if not i.is_dir()]
     # rel: '/' separators even where a Windows tool wrote '\\' into the archive
-    found = [Source(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
-                    archive=archive, member=n)
-             for n in names if n.lower().endswith(BACKUP_SUFFIXES)]
+    found = [_kind(n)(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
+                      archive=archive, member=n)
+             for n in names if _kind(n) is not None]
     if not found:
         raise UcsioError("no controller files (" + " ".join(BACKUP_SUFFIXES)
                          + ") in this archive", file=archive)
@@ -162,14 +183,29 @@ def _read_member(archive: str, member: str, name: str) -> bytes:
         raise UcsioError(f"cannot read from the archive ({exc})", file=name) from None
 
 
+def _kind(name: str):
+    """Source for a file ucsio reads, Binary for one it lists as not read,
+    None for any other file of a folder or archive."""
+    low = name.lower()
+    if low.endswith(BACKUP_SUFFIXES):
+        return Source
+    if low.endswith(BINARY_SUFFIXES):
+        return Binary
+    return None
+
+
 def load_all(paths: list[str], full: bool = False):
     """Parse every controller file the inputs stand for. Returns
-    ``(parsed, errors)``: (Source, ControllerFile) pairs and UcsioErrors, so
+    ``(parsed, errors, not_read)``: (Source, ControllerFile) pairs,
+    UcsioErrors, and the Binary files of the backups (listed, not read), so
     that one bad file is reported beside the others, never instead of them."""
-    parsed, errors = [], []
+    parsed, errors, not_read = [], [], []
     for s in expand(paths):
         if isinstance(s, Failure):
             errors.append(s.error)
+            continue
+        if isinstance(s, Binary):
+            not_read.append(s)
             continue
         try:
             parsed.append((s, s.load(full=full)))
@@ -177,7 +213,7 @@ def load_all(paths: list[str], full: bool = False):
             if exc.file is None:
                 exc.file = s.name
             errors.append(exc)
-    return parsed, errors
+    return parsed, errors, not_read
 
 
 def single_input(paths: list[str]) -> bool:

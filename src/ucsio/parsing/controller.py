@@ -1,7 +1,8 @@
 """A parsed controller file: the document, its frames, and lint findings.
 
 ``load(path)`` picks the vendor from the file's name and first words, so a
-KUKA ``.dat`` and an ABB ``.mod`` go to the right parser.
+KUKA ``.dat``, an ABB ``.mod`` and a FANUC ``.va``/``.ls``/``.dg`` go to
+the right parser.
 """
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from .lalr import paused_gc
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
+FANUC_SUFFIXES = {".va", ".dg", ".ls"}
 
 
 # Every code check can report, with what it means (README: "Lint codes").
@@ -48,6 +50,15 @@ LINT_CODES = {
     "label-too-long": "a TOOL_NAME/BASE_NAME label longer than the controller allows",
     "label-quote": "a label containing a double quote",
     "base-not-world": "a base on an external kinematic: not relative to world",
+    # FANUC
+    "not-a-frame-array": "a $MNUFRAME/$MNUTOOL record that is not ARRAY[groups,frames] OF POSITION",
+    "group-mismatch": "a frame whose Group: line is not the group of its index [g,n]",
+    "out-of-range": "a frame value the controller does not hold: W, P or R outside [-180, 180], "
+                    "or a translation of 1 km or more",
+    "unread-frame-set": "a program's UFRAME/UTOOL assignment in a form ucsio does not read",
+    "label-source": "info: frame.dg or FRAMEVAR.VA beside a sysframe.va could not be read; "
+                    "frames listed without their comments",
+    "after-end": "info: text after a program's /END on its line",
 }
 
 # Findings about a whole file, not a lint: every output format of check names
@@ -132,9 +143,14 @@ def detect_vendor(doc: Document) -> str:
         return "abb"
     if suffix in KUKA_SUFFIXES:
         return "kuka"
+    if suffix in FANUC_SUFFIXES:
+        return "fanuc"
     head = doc.text[:4096].lstrip("\ufeff \t\r\n").upper()
     if head.startswith(("%%%", "MODULE", "!")):
         return "abb"
+    from .fanuc import sniff
+    if sniff(doc):
+        return "fanuc"
     return "kuka"
 
 
@@ -142,6 +158,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     """Parse a document. ``full`` also runs the whole-file grammar over every
     byte (what ``check`` does); without it only what frames need is parsed."""
     if looks_binary(doc.raw):
+        from .fanuc import BINARY_SUFFIXES
+        if os.path.splitext(doc.path)[1].lower() in BINARY_SUFFIXES:
+            raise UcsioError("binary FANUC file: ucsio reads its ASCII twin (.ls for a .tp "
+                             "program, .va for .sv/.vr data)", file=doc.path)
         raise UcsioError("binary or encrypted file: refusing to read or patch it", file=doc.path)
     vendor = detect_vendor(doc)
     # The trees and frames of a file hold no reference cycles; the cyclic
@@ -151,6 +171,9 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         if vendor == "abb":
             from . import rapid
             return rapid.parse(doc, full=full)
+        if vendor == "fanuc":
+            from . import fanuc
+            return fanuc.parse(doc, full=full)
         from . import krl
         return krl.parse(doc, full=full)
 

@@ -68,7 +68,8 @@ def parse(name: str, start: tuple[str, ...], text: str, symbol: str,
 
 # The parsers ucsio runs: (grammar, start symbols). A wheel ships their
 # tables beside the grammars (hatch_build.py calls write_tables).
-BUILT = (("rapid", ("file", "data_decl")), ("rapid", ("statements",)), ("krl", ("file",)))
+BUILT = (("rapid", ("file", "data_decl")), ("rapid", ("statements",)), ("krl", ("file",)),
+         ("va", ("file",)), ("tp", ("file",)))
 
 
 def tables(name: str, start: tuple[str, ...]) -> dict:

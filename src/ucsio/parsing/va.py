@@ -1,0 +1,521 @@
+"""FANUC variable listings (.va): text -> frames, through grammars/va.lark.
+
+``sysframe.va`` lists the frames: ``$MNUFRAME`` (user frames, relative to
+world) and ``$MNUTOOL`` (tool frames, relative to the faceplate), arrays of
+POSITION sized [groups, frames] by each record's head (seen: [2,32],
+[4,20], [4,29]), one element per frame:
+
+    [*SYSTEM*]$MNUFRAME  Storage: SHADOW  Access: RW  : ARRAY[2,32] OF POSITION
+        [1,1] =
+      Group: 1   Config: N U T, 0, 0, 0
+      X:  3495.600   Y:  5813.000   Z: -1166.400
+      W:      .140   P:      .080   R:   -90.040
+
+Every other listing (posreg.va, FRAMEVAR.VA, numreg.va, system.va, ...)
+reads with the same grammar; it gives no frames. Two ways through it, as
+for KRL (ucsio.parsing.krl):
+
+- ``full=True`` (``ucsio check``): every byte through the grammar's tables
+  (ucsio.parsing.lalr's recogniser: no tree), then the fast path for the
+  frames; where the recogniser rejects, the tree of every byte gives Lark's
+  positioned error (``parse_whole``).
+- the fast path (``frames``, ``diff``): an outline (one regular expression)
+  finds the records' head lines; the grammar parses the text with every
+  line blanked except the heads, the first line and the frame records (the
+  offsets and line numbers stay the file's). An element whose value and
+  lines repeat an earlier one's text exactly (the unset frames, all 0, that
+  fill most of a sysframe.va) is blanked too and shares that element's
+  reading, moved to its own offsets: a 100 KB sysframe.va costs the parse
+  of its distinct elements, not of 3,000 lines.
+
+Both paths give the same frames and lints (tests/test_fanuc.py checks it on
+the corpus).
+"""
+from __future__ import annotations
+
+import re
+
+from ..errors import UcsioError
+from ..geometry.frames import Number
+from . import fanuc
+from .controller import ControllerFile
+from .document import Document, Span, lf_lines
+from .lalr import Rejected, Tree
+
+START = ("file",)
+FRAME_RECORDS = {"$MNUFRAME": "UFRAME", "$MNUTOOL": "UTOOL"}
+AXES = ("X", "Y", "Z", "W", "P", "R")
+# FRAMEVAR.VA: SETUP_DATA[group, kind, n].$COMMENT; kind 1 the tool frames, 3
+# the user frames (2: jog frames), as frame.dg orders its tables. In the corpus
+# backup kjbvtu411450r01 the comments of kind 1 stand at n = 1, 2, 4, the tool
+# frames its SYSFRAME.VA sets.
+SETUP_KINDS = {1: "UTOOL", 3: "UFRAME"}
+
+# -- the outline ---------------------------------------------------------------------
+# a record's head line: its tag and name as the grammar's HEAD reads them
+# (searched in "\n" + text: offsets one more than in the text)
+_HEAD_LINE = re.compile(r"\n[ \t\f\r]*\[[^\]\n0-9 ,][^\]\n]*\]([^\s]+)")
+_FIRST = re.compile(r"[^\s]")
+# an element's line up to its "=" (searched in "\n" + text)
+_ELEMENT = re.compile(r"\n[ \t\f\r]*\[[0-9 ,]*\][ \t\f\r]*=")
+# FRAMEVAR.VA: a SETUP_DATA comment that is not empty
+_COMMENT_FIELD = re.compile(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
+                            r"[ \t\f\r]*'[^'\n]")
+# a record's type, from its DESC: ... : ARRAY[2,32] OF POSITION
+_ARRAY = re.compile(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
+_PATH_INDEX = re.compile(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
+
+
+def _records(text: str):
+    """(offset of the head line's start, name upper-case, end) of each
+    record, in order: a record runs to the next head line."""
+    nl = "\n" + text
+    heads = [(m.start(), m.group(1).upper()) for m in _HEAD_LINE.finditer(nl)]
+    out = []
+    for i, (start, name) in enumerate(heads):
+        end = heads[i + 1][0] if i + 1 < len(heads) else len(text)
+        out.append((start, name, end))
+    return out
+
+
+def _line_end(text: str, pos: int) -> int:
+    end = text.find("\n", pos)
+    return len(text) if end < 0 else end
+
+
+def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
+    """The spans the fast path keeps: every record's head line, the file's
+    first line, and where ``wanted(name)`` says "record" the whole record
+    (its repeated elements blanked: see the module's doc) or "comments" its
+    SETUP_DATA comment lines. Returns (spans, shared), ``shared`` mapping an
+    element's INDEX offset to (the first such element's INDEX offset, offset
+    from there to here)."""
+    spans = []
+    shared: dict[int, tuple[int, int]] = {}
+    seen: dict[str, tuple[int, int]] = {}
+    first = _FIRST.search(text)
+    if first is not None:
+        s = text.rfind("\n", 0, first.start()) + 1
+        spans.append((s, _line_end(text, s)))
+    for start, name, end in _records(text):
+        head_end = _line_end(text, start)
+        how = wanted(name)
+        if how == "record":
+            spans += _record_spans(text, start, end, seen, shared)
+        else:
+            spans.append((start, head_end))
+            if how == "comments":
+                nl = "\n" + text
+                for m in _COMMENT_FIELD.finditer(nl, head_end + 1, end + 1):
+                    s = m.start()           # the "\n" in nl: the line's start in text
+                    spans.append((s, _line_end(text, s)))
+    merged: list[tuple[int, int]] = []
+    for s, e in sorted(spans):              # the first line is a record's head, say
+        if merged and s <= merged[-1][1]:
+            merged[-1] = (merged[-1][0], max(merged[-1][1], e))
+        else:
+            merged.append((s, e))
+    return merged, shared
+
+
+def _record_spans(text: str, start: int, end: int, seen: dict,
+                  shared: dict) -> list[tuple[int, int]]:
+    """A frame record's text as spans, each element's value and lines left
+    out where an earlier element of the file wrote exactly the same
+    (``seen``: that text -> (INDEX offset, offset after its "=") of the
+    first; ``shared`` gets the later ones)."""
+    nl = "\n" + text
+    marks = [(m.start(), m.end() - 1) for m in _ELEMENT.finditer(nl, start + 1, end + 1)]
+    if not marks:
+        return [(start, end)]
+    spans = []
+    pos = start
+    for i, (line, eq) in enumerate(marks):
+        tail_end = marks[i + 1][0] if i + 1 < len(marks) else end
+        key = text[eq:tail_end]
+        index = line + len(text[line:eq]) - len(text[line:eq].lstrip(" \t\f\r"))
+        src = seen.setdefault(key, (index, eq))
+        if src[0] != index:
+            spans.append((pos, eq))             # up to and with the "="
+            pos = tail_end
+            shared[index] = (src[0], eq - src[1])
+    spans.append((pos, end))
+    return [s for s in spans if s[0] < s[1]]
+
+
+def masked(text: str, spans) -> str:
+    from .krl import masked as krl_masked
+    return krl_masked(text, spans)
+
+
+# -- parsing -----------------------------------------------------------------------
+def _parser():
+    from .grammar import parser
+    return parser("va", START)
+
+
+_READABLE = {"_NL": "end of line", "HEAD": "a record ([*SYSTEM*]$NAME ...)",
+             "INDEX": "an element ([g,n] = ...)", "FIELD": "Field:", "GROUP": "Group:",
+             "CONFIG": "Config:", "AXIS": "a coordinate (X:, W:, J1 =)",
+             "NUMBER": "a number", "STARS": "a number", "INT": "an integer",
+             "STRING": "a 'comment'", "UNINIT": "Uninitialized", "SCALAR": "a value",
+             "DESC": "its type", "PATH": "a name", "UNIT": "mm or deg",
+             "CONFIG_TEXT": "a configuration", "EQUAL": "'='", "COLON": "':'", "$END":
+             "end of file"}
+
+
+def _parse(doc: Document, text: str, lark_first: bool = False) -> Tree:
+    from .grammar import SyntaxFailure, parse
+    try:
+        return parse("va", START, text, "file", lark_first)
+    except SyntaxFailure as failure:
+        raise fanuc.syntax_error(doc, text, failure.error, _READABLE,
+                                 "not a FANUC variable listing") from None
+
+
+def _lines(doc: Document) -> str:
+    """The text the grammar reads: every line ends at LF (a bare CR made an
+    LF, same length: Document.line_starts' rule)."""
+    text = lf_lines(doc.text)
+    if not text.strip():
+        raise doc.error("empty file: no FANUC variable listing", 0)
+    return text
+
+
+def parse(doc: Document, full: bool = False) -> ControllerFile:
+    """The frames of a variable listing (none unless it is a sysframe.va);
+    ``full`` (``check``): every byte through the grammar first."""
+    text = _lines(doc)
+    if full:
+        try:
+            _parser().recognise(text, "file")
+        except Rejected:
+            return _whole(doc, text, lark_first=True)
+    spans, shared = outline(text, _frames_wanted)
+    tree = _parse(doc, masked(text, spans))
+    return _interpret(doc, tree, shared)
+
+
+def _frames_wanted(name: str):
+    return "record" if name in FRAME_RECORDS else None
+
+
+def parse_whole(doc: Document) -> ControllerFile:
+    """``parse(doc, full=True)`` from the tree of every byte: the reference
+    the fast path is tested against."""
+    return _whole(doc, _lines(doc))
+
+
+def _whole(doc: Document, text: str, lark_first: bool = False) -> ControllerFile:
+    return _interpret(doc, _parse(doc, text, lark_first), {})
+
+
+# -- the tree, read -------------------------------------------------------------------
+class Entry:
+    """What a member's line and the lines below it say (an element, a field,
+    or the record's own value): ``comment`` ('@Home'), ``group``, ``config``,
+    ``uninit``, ``scalar`` (any other value), ``coords`` {axis (X, W, J1,
+    EXT1): Number, or None for ********}, ``joints`` (a joint position),
+    ``dups`` (axes given twice, with offsets). Offsets are where the
+    entry was parsed; a Member says how far its own text is from there."""
+
+    __slots__ = ("comment", "comment_pos", "group", "group_pos", "config", "uninit", "scalar",
+                 "coords", "axis_pos", "joints", "dups")
+
+
+class Member:
+    """A record's element (``key`` its index, [1,2]) or field (``key`` its
+    path), at ``pos``; ``entry`` read ``delta`` characters before (0 but for
+    an element that repeats an earlier one's text: the fast path reads
+    that once)."""
+
+    __slots__ = ("kind", "key", "pos", "entry", "delta")
+
+    def __init__(self, kind: str, key: str, pos: int, entry: Entry, delta: int = 0):
+        self.kind, self.key, self.pos, self.entry, self.delta = kind, key, pos, entry, delta
+
+
+def _entry(children) -> Entry:
+    """An Entry from a member's children after its INDEX/PATH/DESC."""
+    e = Entry.__new__(Entry)
+    e.comment = e.comment_pos = e.group = e.group_pos = e.config = e.scalar = None
+    e.uninit = e.joints = False
+    e.coords, e.axis_pos, e.dups = {}, {}, []
+    for c in children:
+        if isinstance(c, Tree):
+            d = c.data
+            if d == "group":
+                _group(e, c)
+            elif d == "xyz" or d == "joints":
+                e.joints = e.joints or d == "joints"
+                for ax in c.children:
+                    name = ax.children[0]
+                    key = name.value.upper()
+                    if key in e.coords:
+                        e.dups.append((key, name.start_pos))
+                        continue
+                    v = ax.children[1]
+                    e.axis_pos[key] = name.start_pos
+                    e.coords[key] = (None if v.type == "STARS" else
+                                     Number(Span(v.start_pos, v.end_pos), v.value, float(v.value)))
+            continue
+        t = c.type
+        if t == "STRING":       # '@Home', the comment of `1  'Chip 1'`, a string's value
+            e.comment, e.comment_pos = c.value[1:-1], c.start_pos
+        elif t == "UNINIT":
+            e.uninit = True
+        elif t == "SCALAR":
+            e.scalar = c.value
+    return e
+
+
+def _group(e: Entry, node: Tree) -> None:
+    ch = node.children
+    e.group_pos = ch[0].start_pos
+    e.group = int(ch[1].value) if len(ch[1].value) < 10 else -1
+    e.config = ch[3].value if len(ch) > 3 else ("" if len(ch) > 2 else None)
+
+
+class Record:
+    """A record: ``name`` ($MNUFRAME), its ``tag`` (*SYSTEM*), what its head
+    declares (``desc``; ``dims`` and ``elem_type`` of an array), its own
+    ``value`` (an Entry) and its ``members`` (Member)."""
+
+    __slots__ = ("name", "tag", "head_pos", "line", "desc", "dims", "elem_type", "value",
+                 "members")
+
+
+def records(tree: Tree, doc: Document, shared: dict | None = None) -> list[Record]:
+    """The records of a tree, read; ``shared`` (the fast path): an element
+    blanked because it repeats an earlier one takes that one's Entry."""
+    shared = shared or {}
+    read: dict[int, Entry] = {}
+    out = []
+    for node in tree.children:
+        if not isinstance(node, Tree) or node.data != "record":
+            continue
+        ch = node.children
+        head = ch[0]
+        r = Record.__new__(Record)
+        close = head.value.index("]")
+        r.tag, r.name = head.value[1:close], head.value[close + 1:]
+        r.head_pos, r.line = head.start_pos, doc.line_of(head.start_pos)
+        r.desc = ch[1].value if len(ch) > 1 and getattr(ch[1], "type", None) == "DESC" else ""
+        r.dims, r.elem_type = _type_of(r.desc)
+        r.value = _entry([c for c in ch[1:] if not (isinstance(c, Tree) and c.data in
+                                                     ("element", "field"))
+                          and getattr(c, "type", None) != "DESC"])
+        r.members = []
+        for m in ch:
+            if not isinstance(m, Tree) or m.data not in ("element", "field"):
+                continue
+            mc = m.children
+            if m.data == "element":
+                key_tok, rest = mc[0], mc[1:]
+            else:
+                key_tok = mc[1]
+                rest = [c for c in mc[2:] if getattr(c, "type", None) != "DESC"]
+            pos = key_tok.start_pos
+            if pos in shared:
+                src, delta = shared[pos]
+                r.members.append(Member(m.data, key_tok.value, pos, read[src], delta))
+            else:
+                e = read[pos] = _entry(rest)
+                r.members.append(Member(m.data, key_tok.value, pos, e))
+        out.append(r)
+    return out
+
+
+def _type_of(desc: str):
+    """(dims, element type) of ``... : ARRAY[2,32] OF POSITION``; (None,
+    type) for a scalar (``... : POSITION``, ``... : INTEGER``)."""
+    typ = desc.rpartition(":")[2].strip() if ":" in desc else desc.strip()
+    m = _ARRAY.search(typ)
+    if m is None:
+        return None, typ
+    try:
+        dims = tuple(int(d) for d in m.group(1).split(","))
+    except ValueError:
+        dims = ()
+    return dims, m.group(2).strip()
+
+
+def _index(text: str):
+    """[1,2] -> (1, 2); None for anything else."""
+    parts = text[1:-1].split(",")
+    try:
+        got = tuple(int(p) for p in parts)
+    except ValueError:
+        return None
+    return got if all(len(p.strip()) < 10 for p in parts) else None
+
+
+def _moved(n: Number, delta: int) -> Number:
+    return Number(Span(n.span.start + delta, n.span.end + delta), n.text, n.value) if delta else n
+
+
+# -- frames ---------------------------------------------------------------------------
+def _interpret(doc: Document, tree: Tree, shared: dict) -> ControllerFile:
+    cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
+    recs = records(tree, doc, shared)
+    names = {r.name.upper() for r in recs}
+    cf.extra["records"] = [r.name for r in recs]
+    frame_recs = [r for r in recs if r.name.upper() in FRAME_RECORDS]
+    cf.extra["kind"] = ("sysframe" if frame_recs else "posreg" if "$POSREG" in names
+                        else "framevar" if "SETUP_DATA" in names else "variables")
+    if frame_recs:
+        labels, errors = fanuc.labels_beside(doc.path)
+        for exc in errors:
+            cf.lint(0, "label-source", f"{_where(exc)} could not be read ({exc.message}): "
+                                       "frames listed without its comments", severity="info")
+        seen: dict[str, int] = {}
+        made: dict[int, tuple] = {}
+        for r in frame_recs:
+            _frames_of(cf, r, labels, seen, made)
+    return cf
+
+
+def _where(exc: UcsioError) -> str:
+    import os
+    return os.path.basename(exc.file or "") or "a file beside it"
+
+
+def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: dict) -> None:
+    """The frames of a $MNUFRAME or $MNUTOOL record. ``made``: the numbers
+    and pose of each Entry already read without a finding, by id: an element
+    that repeats it (the fast path's shared ones) moves them to its offsets."""
+    doc = cf.document
+    ftype = FRAME_RECORDS[r.name.upper()]
+    dims = r.dims
+    if dims is None or len(dims) != 2 or r.elem_type.upper() != "POSITION":
+        cf.lint(r.head_pos, "not-a-frame-array",
+                f"{r.name} is {r.desc.rpartition(':')[2].strip() or 'untyped'}: expected "
+                "ARRAY[groups,frames] OF POSITION; no frames read from it")
+        return
+    for m in r.members:
+        if m.kind != "element":
+            cf.lint(m.pos, "not-a-frame-array", f"{r.name}: a Field in an array of frames")
+            continue
+        index = _index(m.key)
+        if index is None or len(index) != 2:
+            cf.lint(m.pos, "index-out-of-range",
+                    f"{r.name}{m.key}: a frame's index is [group,frame]")
+            continue
+        g, n = index
+        line = doc.line_of(m.pos)
+        if not (1 <= g <= dims[0] and 1 <= n <= dims[1]):
+            cf.lint(m.pos, "index-out-of-range",
+                    f"{r.name}{m.key} is outside the declared size [{dims[0]},{dims[1]}]")
+        e, delta = m.entry, m.delta
+        name = fanuc.frame_name(ftype, n, g)
+        if e.group is not None and e.group != g:
+            cf.lint(e.group_pos + delta, "group-mismatch",
+                    f"{name}: the element [{g},{n}] says Group: {e.group}")
+        got = made.get(id(e))
+        if got is None:
+            before = len(cf.lints)
+            numbers = _frame_numbers(cf, r.name + m.key, e, m.pos, delta)   # at e's offsets
+            pose, clean = None, len(cf.lints) == before
+        else:
+            (numbers, pose), clean = got, False
+        info = {"config": (e.config.strip() or None) if e.config is not None else None}
+        # the element's own comment ([1,1] =   'FIXTURE'), else the one beside it
+        label = (e.comment or "").strip() or labels.get((ftype, n, g))
+        fr = fanuc.make_frame(doc, ftype, n, g, line,
+                              numbers and {k: _moved(v, delta) for k, v in numbers.items()},
+                              label=label, info=info, pose=pose)
+        if clean:
+            made[id(e)] = (numbers, fr.pose)
+        if name.upper() in seen:
+            cf.lint(m.pos, "duplicate-frame",
+                    f"{name} is listed twice (lines {seen[name.upper()]} and {line})")
+        else:
+            seen[name.upper()] = line
+        cf.frames.append(fr)
+
+
+def _frame_numbers(cf: ControllerFile, what: str, e: Entry, pos: int, delta: int):
+    """The six numbers of a frame element (at the offsets ``e`` was read at),
+    or None (with a lint) where it has no complete X Y Z W P R."""
+    if e.uninit:
+        cf.lint(pos, "no-value", f"{what} is Uninitialized: listed without a value",
+                severity="info")
+        return None
+    if e.joints:
+        cf.lint(pos, "not-a-frame", f"{what} holds joint values, not X Y Z W P R")
+        return None
+    if not e.coords:
+        cf.lint(pos, "missing-component", f"{what} has no X Y Z W P R: listed without a value")
+        return None
+    for key, at in e.dups:
+        cf.lint(at + delta, "duplicate-component", f"{what}: {key} given twice")
+    nums = {}
+    complete = True
+    for key, n in e.coords.items():
+        at = e.axis_pos[key] + delta
+        if key not in AXES:
+            cf.lint(at, "unknown-component", f"{what}: a frame has no component {key}")
+            continue
+        if n is None:
+            cf.lint(at, "not-a-number", f"{what}: {key} is not a number (********)")
+            complete = False
+            continue
+        if not abs(n.value) <= fanuc.REAL_MAX:
+            raise cf.document.error(f"number {n.text[:30]} is out of range for a FANUC REAL "
+                                    "(float32)", n.span.start + delta)
+        why = fanuc.range_problem(key.lower(), n.value)
+        if why:
+            cf.lint(n.span.start + delta, "out-of-range", f"{what}: {why}")
+        nums[key.lower()] = n
+    missing = [k for k in AXES if k not in e.coords]
+    if missing:
+        cf.lint(pos, "missing-component",
+                f"{what}: {' '.join(missing)} missing: listed without a value")
+        return None
+    if not complete:
+        return None
+    return {k: nums[k] for k in fanuc.COMPONENTS}
+
+
+# -- the other listings, for the readers that need them --------------------------------
+def frame_comments(doc: Document) -> dict:
+    """FRAMEVAR.VA's frame comments: {(type, n, group): comment} from the
+    SETUP_DATA[g,1,n] (tool frames) and [g,3,n] (user frames) comments that
+    are not blank, read through the grammar (the record's head and those
+    lines; the rest blanked)."""
+    text = _lines(doc)
+    spans, _ = outline(text, lambda name: "comments" if name == "SETUP_DATA" else None)
+    tree = _parse(doc, masked(text, spans))
+    return comments_of(records(tree, doc))
+
+
+def comments_of(recs: list[Record]) -> dict:
+    out = {}
+    for r in recs:
+        if r.name.upper() != "SETUP_DATA":
+            continue
+        for member in r.members:
+            e = member.entry
+            m = _PATH_INDEX.search(member.key) if member.kind == "field" else None
+            if m is None or e.comment is None or not e.comment.strip():
+                continue
+            g, k, n = (int(x) for x in m.groups())
+            if k in SETUP_KINDS:
+                out[(SETUP_KINDS[k], n, g)] = e.comment.strip()
+    return out
+
+
+def position_registers(doc: Document) -> dict:
+    """posreg.va's registers: {(group, n): Entry} for every $POSREG element
+    (comment, group, config, coords: X..R or J1..; ``uninit``), from the
+    tree of every byte."""
+    tree = _parse(doc, _lines(doc))
+    out = {}
+    for r in records(tree, doc):
+        if r.name.upper() != "$POSREG":
+            continue
+        for member in r.members:
+            index = _index(member.key) if member.kind == "element" else None
+            if index is not None and len(index) == 2:
+                out[index] = member.entry
+    return out
