@@ -23,7 +23,7 @@
 
 Git setup for a folder of controller backups:
   git config diff.ucsio.command "ucsio diff"          (or textconv: "ucsio diff --textconv")
-  echo '*.mod diff=ucsio' >> .gitattributes; likewise *.sys *.dat ..."""
+  echo '*.mod diff=ucsio' >> .gitattributes; likewise *.sys *.dat *.va *.ls ..."""
 from __future__ import annotations
 
 import os
@@ -157,13 +157,15 @@ def _one_frame(args) -> int:
     if "warning" in d:
         print(f"ucsio: warning: {d['warning']}", file=sys.stderr)
     s, m = d["simulated"], d["measured"]
-    rows = [["simulated", *(fmt(s[k]) for k in "xyz"), *(fmt(s[k], 4) for k in "abc")],
-            ["measured", *(fmt(m[k]) for k in "xyz"), *(fmt(m[k], 4) for k in "abc")],
+    # FANUC: W, P, R as the controller writes them (a = r, b = p, c = w)
+    angles, names = (("c", "b", "a"), ["w", "p", "r"]) if "dw" in d else ("abc", ["a", "b", "c"])
+    rows = [["simulated", *(fmt(s[k]) for k in "xyz"), *(fmt(s[k], 4) for k in angles)],
+            ["measured", *(fmt(m[k]) for k in "xyz"), *(fmt(m[k], 4) for k in angles)],
             ["Δ", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
-             *(f"{d[k]:+.4f}" for k in ("da", "db", "dc"))]]
+             *(f"{d['d' + k]:+.4f}" for k in angles)]]
     label = f" ({d['label']})" if d.get("label") else ""
     print(f"{d['name']}{label}  {d['type']}  {d['file']}:{d['line']}")
-    print(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6}))
+    print(table(["", "x", "y", "z", *names], rows, right={1, 2, 3, 4, 5, 6}))
     from ..output import paint
     verdict = paint("PASS", "pass") if d["pass"] else paint("FAIL", "fail")
     print(f"angle {d['angle']:.4f} deg  dist {d['dist']:.3f} mm  dt_mean {d['dt_mean']:.3f} mm  "

@@ -154,9 +154,12 @@ def detect_vendor(doc: Document) -> str:
     return "kuka"
 
 
-def parse(doc: Document, full: bool = False) -> ControllerFile:
+def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerFile:
     """Parse a document. ``full`` also runs the whole-file grammar over every
-    byte (what ``check`` does); without it only what frames need is parsed."""
+    byte (what ``check`` does); without it only what frames need is parsed.
+    ``beside``: the files beside the document's path are its backup's (a
+    FANUC sysframe.va takes its frames' comments from them); False for a
+    file that stands alone (git's textconv hands over a temporary copy)."""
     if looks_binary(doc.raw):
         from .fanuc import BINARY_SUFFIXES
         if os.path.splitext(doc.path)[1].lower() in BINARY_SUFFIXES:
@@ -173,7 +176,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             return rapid.parse(doc, full=full)
         if vendor == "fanuc":
             from . import fanuc
-            return fanuc.parse(doc, full=full)
+            return fanuc.parse(doc, full=full, beside=beside)
         from . import krl
         return krl.parse(doc, full=full)
 

@@ -106,11 +106,11 @@ def sniff(doc: Document) -> bool:
     return False
 
 
-def parse(doc: Document, full: bool = False):
+def parse(doc: Document, full: bool = False, beside: bool = True):
     kind = kind_of(doc)
     if kind == "va":
         from . import va
-        return va.parse(doc, full=full)
+        return va.parse(doc, full=full, beside=beside)
     if kind == "ls":
         from . import tp
         return tp.parse(doc, full=full)

@@ -182,32 +182,34 @@ def _lines(doc: Document) -> str:
     return text
 
 
-def parse(doc: Document, full: bool = False) -> ControllerFile:
+def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerFile:
     """The frames of a variable listing (none unless it is a sysframe.va);
-    ``full`` (``check``): every byte through the grammar first."""
+    ``full`` (``check``): every byte through the grammar first; ``beside``:
+    label the frames from frame.dg / FRAMEVAR.VA beside the file."""
     text = _lines(doc)
     if full:
         try:
             _parser().recognise(text, "file")
         except Rejected:
-            return _whole(doc, text, lark_first=True)
+            return _whole(doc, text, lark_first=True, beside=beside)
     spans, shared = outline(text, _frames_wanted)
     tree = _parse(doc, masked(text, spans))
-    return _interpret(doc, tree, shared)
+    return _interpret(doc, tree, shared, beside)
 
 
 def _frames_wanted(name: str):
     return "record" if name in FRAME_RECORDS else None
 
 
-def parse_whole(doc: Document) -> ControllerFile:
+def parse_whole(doc: Document, beside: bool = True) -> ControllerFile:
     """``parse(doc, full=True)`` from the tree of every byte: the reference
     the fast path is tested against."""
-    return _whole(doc, _lines(doc))
+    return _whole(doc, _lines(doc), beside=beside)
 
 
-def _whole(doc: Document, text: str, lark_first: bool = False) -> ControllerFile:
-    return _interpret(doc, _parse(doc, text, lark_first), {})
+def _whole(doc: Document, text: str, lark_first: bool = False,
+           beside: bool = True) -> ControllerFile:
+    return _interpret(doc, _parse(doc, text, lark_first), {}, beside)
 
 
 # -- the tree, read -------------------------------------------------------------------
@@ -355,7 +357,7 @@ def _moved(n: Number, delta: int) -> Number:
 
 
 # -- frames ---------------------------------------------------------------------------
-def _interpret(doc: Document, tree: Tree, shared: dict) -> ControllerFile:
+def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
     recs = records(tree, doc, shared)
     names = {r.name.upper() for r in recs}
@@ -364,7 +366,7 @@ def _interpret(doc: Document, tree: Tree, shared: dict) -> ControllerFile:
     cf.extra["kind"] = ("sysframe" if frame_recs else "posreg" if "$POSREG" in names
                         else "framevar" if "SETUP_DATA" in names else "variables")
     if frame_recs:
-        labels, errors = fanuc.labels_beside(doc.path)
+        labels, errors = fanuc.labels_beside(doc.path) if beside else ({}, [])
         for exc in errors:
             cf.lint(0, "label-source", f"{_where(exc)} could not be read ({exc.message}): "
                                        "frames listed without its comments", severity="info")

@@ -5,13 +5,15 @@ by their path inside each backup (case-insensitively, as the controllers'
 file systems are), and reports files added and removed, then per changed
 file its frames changed, added and removed. Files whose bytes are equal are
 not even parsed (an encrypted module that did not change is no error); a file
-that changed but cannot be read is listed with its error (exit 2).
+that changed but cannot be read is listed with its error (exit 2). A FANUC
+backup's binary files (.tp .sv .vr) are compared by their bytes and listed
+as not read: added, removed or changed, never an error.
 """
 from __future__ import annotations
 
 
 from ..errors import UcsioError
-from ..parsing.backup import Failure, Source, expand
+from ..parsing.backup import Binary, Failure, Source, expand
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -58,6 +60,8 @@ def pair(old: list[Source], new: list[Source]):
 
 
 def _frame_names(src: Source, errors: list) -> list[str]:
+    if isinstance(src, Binary):
+        return []
     try:
         return [f.name for f in src.load().frames]
     except UcsioError as exc:
@@ -76,11 +80,12 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
     for key in sorted(set(olds) | set(news)):
         (orel, o), (nrel, n) = olds.get(key, (None, None)), news.get(key, (None, None))
         if o is None:
-            files_added.append({"path": nrel, "file": n.name, "frames": _frame_names(n, errors)})
+            files_added.append(_binary({"path": nrel, "file": n.name,
+                                        "frames": _frame_names(n, errors)}, n))
             continue
         if n is None:
-            files_removed.append({"path": orel, "file": o.name,
-                                  "frames": _frame_names(o, errors)})
+            files_removed.append(_binary({"path": orel, "file": o.name,
+                                          "frames": _frame_names(o, errors)}, o))
             continue
         try:
             old_bytes, new_bytes = o.read(), n.read()
@@ -89,6 +94,12 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
             continue
         if old_bytes == new_bytes:
             unchanged_files += 1
+            continue
+        if isinstance(o, Binary) or isinstance(n, Binary):
+            files_changed.append({"path": nrel, "old_file": o.name, "file": n.name,
+                                  "frames_changed": None, "frames_added": None,
+                                  "frames_removed": None, "other_lines": None,
+                                  "not_read": (n if isinstance(n, Binary) else o).reason})
             continue
         from ..parsing.controller import parse
         from ..parsing.document import Document
@@ -120,6 +131,13 @@ def diff_backups(old_path: str, new_path: str) -> dict[str, Any]:
             "errors": errors}
 
 
+def _binary(entry: dict, src: Source) -> dict:
+    """A file added or removed, with ``not_read`` where it is a binary one."""
+    if isinstance(src, Binary):
+        entry["not_read"] = src.reason
+    return entry
+
+
 def differs(result: dict[str, Any]) -> bool:
     return bool(result["files_added"] or result["files_removed"] or result["files_changed"])
 
@@ -130,6 +148,15 @@ def as_json(result: dict[str, Any]) -> dict[str, Any]:
                             for f in result["files_changed"]]
     out["errors"] = [e.as_dict() for e in result["errors"]]
     return out
+
+
+def _frames_text(f: dict) -> str:
+    """'2 frames: wobjA, wobjB', or why the file is not read."""
+    if f.get("not_read"):
+        return f"not read: {f['not_read']}"
+    names = f["frames"]
+    return _n(len(names), "frame") + (": " + ", ".join(names[:8]) +
+                                      (", ..." if len(names) > 8 else "") if names else "")
 
 
 def _n(count: int, what: str) -> str:
@@ -153,14 +180,13 @@ def format_backup_diff(result: dict[str, Any]) -> str:
     if not differs(result):
         lines.append("  no difference")
     for f in fa:
-        lines.append(f"+ {f['path']}: file added ({_n(len(f['frames']), 'frame')}"
-                     + (": " + ", ".join(f["frames"][:8]) + (", ..." if len(f["frames"]) > 8 else "")
-                        if f["frames"] else "") + ")")
+        lines.append(f"+ {f['path']}: file added ({_frames_text(f)})")
     for f in fr:
-        lines.append(f"- {f['path']}: file removed ({_n(len(f['frames']), 'frame')}"
-                     + (": " + ", ".join(f["frames"][:8]) + (", ..." if len(f["frames"]) > 8 else "")
-                        if f["frames"] else "") + ")")
+        lines.append(f"- {f['path']}: file removed ({_frames_text(f)})")
     for f in fc:
+        if f.get("not_read"):
+            lines.append(f"~ {f['path']}: changed, not read: {f['not_read']}")
+            continue
         if f.get("error"):
             lines.append(f"~ {f['path']}: changed, NOT READ: {f['error']}")
             continue

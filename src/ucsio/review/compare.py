@@ -5,7 +5,8 @@
 - ``diff_files``: every frame of two controller files matched by name
   (case-insensitively): ``changed``, ``added``, ``removed``. Values that are
   equal at the controllers' float32 precision count as unchanged, and so do
-  q and -q, or two A, B, C splits of the same rotation.
+  q and -q, or two A, B, C (FANUC W, P, R) splits of the same rotation:
+  W 180 and W -180 are one frame.
 - ``textconv``: a stable one-line-per-frame listing (values as written),
   then the file's text, for git's ``diff.<driver>.textconv``.
 - ``git_diff``: the seven-argument form git passes to an external diff
@@ -17,7 +18,7 @@ import os
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
-from ..parsing.controller import ControllerFile, load, parse
+from ..parsing.controller import ControllerFile, parse
 from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
@@ -49,6 +50,7 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
     if frame.label:
         d["label"] = frame.label
     d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
+    _fanuc_deltas(d)
     warnings = []
     why = reference_problem(cf, frame)
     if why:
@@ -65,7 +67,16 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
 
 # ------------------------------------------------------------- two files
 
-_IGNORED_INFO = {"module"}
+# FANUC's W, P, R are the pose's rotation, compared as one (frame_changes'
+# "value"), never as three numbers: W 180 and W -180 are one frame
+_IGNORED_INFO = {"module", "w", "p", "r"}
+
+
+def _fanuc_deltas(d: dict) -> None:
+    """A FANUC frame's deltas in its own terms beside SPEC's: dw = dc,
+    dp = db, dr = da (a = r, b = p, c = w)."""
+    if d.get("vendor") == "fanuc" and "da" in d:
+        d["dw"], d["dp"], d["dr"] = d["dc"], d["db"], d["da"]
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -132,6 +143,7 @@ def diff_files(old: ControllerFile | None, new: ControllerFile | None) -> dict[s
                           "group", "pass"):
                     item[k] = delta[k]
                 item["simulated"], item["measured"] = delta["simulated"], delta["measured"]
+                _fanuc_deltas(item)
             changed.append(item)
         removed.extend(o.as_dict() for o in olds[len(news):])
         added.extend(n.as_dict() for n in news[len(olds):])
@@ -177,7 +189,7 @@ def frame_line(f: Frame) -> str:
     for key, n in f.numbers.items():
         parts.append(f"{key}={n.written}")
     for k in ("robhold", "ufprog", "ufmec", "storage", "base_type", "tool_type", "role", "load",
-              "machine"):
+              "machine", "group", "config", "set_from"):
         if k in f.info and f.info[k] is not None and f.info[k] != "":
             parts.append(f"{k}={_info_text(f.info[k])}")
     return " ".join(str(x) for x in parts)
@@ -198,8 +210,10 @@ def _pose_text(d: dict, extra: int = 0) -> str:
     if d.get("x") is None:
         return "no value"
     t, a, q = 3 + extra, 4 + extra, 6 + extra
-    s = f"x {d['x']:.{t}f}  y {d['y']:.{t}f}  z {d['z']:.{t}f}  " \
-        f"a {d['a']:.{a}f}  b {d['b']:.{a}f}  c {d['c']:.{a}f}"
+    s = f"x {d['x']:.{t}f}  y {d['y']:.{t}f}  z {d['z']:.{t}f}  "
+    if d.get("vendor") == "fanuc":       # W, P, R as the controller writes them
+        return s + f"w {d['c']:.{a}f}  p {d['b']:.{a}f}  r {d['a']:.{a}f}"
+    s += f"a {d['a']:.{a}f}  b {d['b']:.{a}f}  c {d['c']:.{a}f}"
     if d.get("vendor") == "abb" and d.get("q"):
         s += "  q [" + ", ".join(f"{c:.{q}f}" for c in d["q"]) + "]"
     return s
@@ -231,8 +245,10 @@ def change_lines(result: dict[str, Any]) -> list[str]:
         head = f"~ {_named(c)}: {', '.join(c['changes'])} changed"
         lines.append(head)
         if "dx" in c and "value" in c["changes"]:
+            angles = (f"dw {c['dw']:+.4f}  dp {c['dp']:+.4f}  dr {c['dr']:+.4f}" if "dw" in c
+                      else f"da {c['da']:+.4f}  db {c['db']:+.4f}  dc {c['dc']:+.4f}")
             lines.append(f"    Δ dx {c['dx']:+.3f}  dy {c['dy']:+.3f}  dz {c['dz']:+.3f} mm  "
-                         f"da {c['da']:+.4f}  db {c['db']:+.4f}  dc {c['dc']:+.4f} deg  "
+                         f"{angles} deg  "
                          f"angle {c['angle']:.4f} deg  dist {c['dist']:.3f} mm  "
                          f"dt_mean {c['dt_mean']:.3f} mm (group {c['group']})")
         if "value" in c["changes"]:
@@ -359,9 +375,12 @@ def plain_diff(path: str, old_file: str, new_file: str) -> str:
 
 def textconv_file(path: str) -> str:
     """The listing of a file for git textconv. A file ucsio cannot read, or
-    one without any frame, is passed through as text."""
+    one without any frame, is passed through as text. Files beside it are
+    not read (git hands over one side as a temporary copy, the other as the
+    work tree's file: a FANUC frame's comment from frame.dg beside one only
+    would show as a change)."""
     try:
-        cf = load(path)
+        cf = parse(Document.read(path), beside=False)
         if cf.frames:
             return textconv(cf)
     except UcsioError:

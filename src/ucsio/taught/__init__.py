@@ -132,6 +132,9 @@ def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> 
     if frame.vendor == "abb":
         from . import abb
         return abb.find(cf, frame, cache)
+    if frame.vendor == "fanuc":
+        return Found(warnings=[f"{frame.name}: the points taught in FANUC frames (the /POS "
+                               "of .ls programs) are not read yet"])
     from . import kuka
     return kuka.find(cf, frame, cache)
 
