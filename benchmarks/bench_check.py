@@ -1,11 +1,12 @@
 """``ucsio check`` over the whole shared corpus in one process, against a
 regex tokenizer over the same bytes, side by side in one run.
 
-    python benchmarks/bench_check.py [--repeat 5] [--corpus DIR]
+    python benchmarks/bench_check.py [--repeat 5] [--corpus DIR] [--vendor abb|kuka|fanuc]
 
-- check: ``ucsio.cli.main(["check", CORPUS/abb, CORPUS/kuka, "--json"])``
-  with stdout to a null device: reading every file, the whole-file grammar
-  over every byte, the frames, the round-trip proof and the lints.
+- check: ``ucsio.cli.main(["check", CORPUS/abb, CORPUS/kuka, CORPUS/fanuc,
+  "--json"])`` with stdout to a null device: reading every file, the
+  whole-file grammar over every byte, the frames, the round-trip proof and
+  the lints. ``--vendor`` takes one vendor's folder only.
 - baseline: read the same files and run one regex tokenizer over their bytes
   (strings, comments, numbers, names, operators, blanks: every byte lands in
   a token), counting the tokens.
@@ -41,7 +42,7 @@ TOKEN = re.compile(rb"""
 
 
 def files(corpus: Path) -> list[Path]:
-    suffixes = {".mod", ".modx", ".sys", ".sysx", ".prg", ".dat"}
+    suffixes = {".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls"}
     return sorted(p for p in corpus.rglob("*") if p.is_file() and p.suffix.lower() in suffixes)
 
 
@@ -58,7 +59,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--corpus", type=Path, default=CORPUS)
+    ap.add_argument("--vendor", choices=("abb", "kuka", "fanuc"),
+                    help="only that vendor's folder of the corpus")
     args = ap.parse_args(argv)
+    if args.vendor:
+        args.corpus = args.corpus / args.vendor
     sys.path.insert(0, str(ROOT / "src"))
     from ucsio.cli import main as cli_main
 

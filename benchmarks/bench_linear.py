@@ -12,10 +12,13 @@ quadratic. Shapes:
 - hand-picked ones (SHAPES: long runs of blanks inside and around
   declarations, unterminated items, deep brackets, ...);
 - the grid: every run in RUNS (a long word, digits, blanks, CRs, every
-  punctuation character, ...) after every context in RAPID_CONTEXTS and
-  KRL_CONTEXTS (each declaration keyword, inside an aggregate, a string, a
-  comment, a routine, ...), open at the end of the file and closed; and
-  after each context of the measurement readers (READER_CONTEXTS).
+  punctuation character, ...) after every context in RAPID_CONTEXTS,
+  KRL_CONTEXTS and the FANUC ones (VA_CONTEXTS, LS_CONTEXTS, DG_CONTEXTS:
+  a record's head, an element, a Group:/Config: line, a coordinate, a
+  Field:, a program's /MN line, a frame or register assignment, a /POS
+  point, a frame.dg row, a curpos.dg value, ...), open at the end of the
+  file and closed; and after each context of the measurement readers
+  (READER_CONTEXTS).
 
 A shape refused at once (t(4N) under --min-time) is not judged. One whose
 ratio looks too high is timed again, best of --repeat, with a larger N.
@@ -164,6 +167,67 @@ KRL_CONTEXTS = {
 }
 KRL_OUTSIDE = {"header": "&", "DEFDAT": "DEFDAT ", "before DEFDAT": ""}
 
+# FANUC: variable listings (.va), TP programs (.ls), diagnostics (.dg)
+VA_HEAD = "[*SYSTEM*]$MNUFRAME  Storage: SHADOW  Access: RW  : ARRAY[2,32] OF POSITION\n"
+VA_ENTRY = VA_HEAD + "    [1,1] = \n  Group: 1   Config: N U T, 0, 0, 0\n"
+VA_CONTEXTS = {
+    "listing": "", "head": "[*SYSTEM*]$MNUFRAME", "desc": "[*SYSTEM*]$MNUFRAME  Storage: ",
+    "array": "[*SYSTEM*]$MNUFRAME  Storage: SHADOW  Access: RW  : ARRAY[",
+    "scalar =": "[*SYSTEM*]$X  Storage: CMOS  Access: RW  : INTEGER = ",
+    "element": VA_HEAD + "    [1,", "element =": VA_HEAD + "    [1,1] = ",
+    "comment": VA_HEAD + "    [1,1] =   '", "inline group": VA_HEAD + "    [1,1] =   'c'   Group: ",
+    "group": VA_HEAD + "    [1,1] = \n  Group: ", "config": VA_HEAD + "    [1,1] = \n  Group: 1   Config: ",
+    "x line": VA_ENTRY + "  X: ", "w line": VA_ENTRY + "  X: 1.0   Y: 2.0   Z: 3.0\n  W: ",
+    "joints": VA_HEAD + "    [1,1] =   'h'   Group: 1\n  J1 = ",
+    "field": "[*SYSTEM*]$CELL_GRP  Storage: SHADOW  Access: RW  : ARRAY[2] OF CELL_GRP_T\n     Field: ",
+    "field =": "[*SYSTEM*]$S  Storage: CMOS  Access: RW  : S_T = \n   Field: $S.$A Access: RW: INTEGER = ",
+    "setup comment": "[TPFDEF]SETUP_DATA  Storage: SHADOW  Access: RW  : ARRAY[8,3,61] OF FRMSET_T\n"
+                     "   Field: SETUP_DATA[1,1,1].$COMMENT Access: RW: STRING[29] = '",
+}
+LS_MN = "/PROG  P\n/ATTR\nOWNER\t\t= MNEDITOR;\n/MN\n"
+LS_POINT = LS_MN + "/POS\nP[1]{\n   GP1:\n\tUF : 1, UT : 1,\t"
+LS_CONTEXTS = {
+    "program": "", "prog": "/PROG  ", "attr": "/PROG  P\n/ATTR\n", "mn": LS_MN,
+    "line": LS_MN + "   1:  ", "uframe": LS_MN + "   1:  UFRAME[", "uframe comment": LS_MN + "   1:  UFRAME[1:",
+    "uframe =": LS_MN + "   1:  UFRAME[1]=", "uframe pr": LS_MN + "   1:  UFRAME[1]=PR[",
+    "uframe register": LS_MN + "   1:  UTOOL[R[", "pr": LS_MN + "   1:  PR[1,", "pr =": LS_MN + "   1:  PR[1,1]=",
+    "pr parens": LS_MN + "   1:  PR[1,1]=((", "pr lpos": LS_MN + "   1:  PR[1]=LPOS",
+    "continued": LS_MN + "   1:L P[1] 100mm/sec FINE\n    :", "pos": LS_MN + "/POS\n",
+    "point": LS_MN + "/POS\nP[1:\"", "point group": LS_MN + "/POS\nP[1]{\n   GP1:\n\tUF : ",
+    "config": LS_POINT + "CONFIG : '", "axis": LS_POINT + "CONFIG : 'N U T, 0, 0, 0',\n\tX = ",
+}
+DG_CONTEXTS = {
+    "frame table": "User Frame\n", "row": "User Frame\n   1.0     2.0     3.0     4.0     5.0     6.0 ",
+    "curpos": "CURRENT ROBOT POSITION::\nGroup #:  1\n", "joint": "CURRENT ROBOT POSITION::\n"
+    "Group #:  1\nCURRENT JOINT POSITION:\nJoint   1:", "value": "CURRENT ROBOT POSITION::\n"
+    "Group #:  1\nFrame #:   1  Tool #:   1\nCURRENT USER FRAME POSITION:\nX: ",
+    "cfg": "CURRENT ROBOT POSITION::\nGroup #:  1\nCURRENT WORLD POSITION:\nCFG: ",
+}
+SHAPES.update({
+    "va many frames": lambda n: ("s.va", VA_HEAD + (
+        "    [1,1] = \n  Group: 1   Config: N D B, 0, 0, 0\n  X:     0.000   Y:     0.000   Z:     "
+        "0.000\n  W:     0.000   P:     0.000   R:     0.000\n") * (n // 130)),
+    "va many distinct frames": lambda n: ("s.va", VA_HEAD + "".join(
+        f"    [1,{i}] = \n  Group: 1   Config: N U T, 0, 0, 0\n  X: {i:9.3f}   Y:     0.000   Z:  "
+        "   0.000\n  W:     0.000   P:     0.000   R:     0.000\n" for i in range(n // 130))),
+    "va long comment": lambda n: ("s.va", VA_HEAD + "    [1,1] =   '" + "c" * n + "' \n"),
+    "va spaces in a line": lambda n: ("s.va", VA_ENTRY + "  X:" + " " * n + "1.0   Y: 2.0   Z: 3.0\n"),
+    "ls many lines": lambda n: ("p.ls", LS_MN + "".join(f"{i:4d}:  UFRAME_NUM=1 ;\n"
+                                                        for i in range(1, n // 20)) + "/POS\n/END\n"),
+    "ls many register sets": lambda n: ("p.ls", LS_MN + "".join(
+        f"{i:4d}:  PR[16,{i % 6 + 1}]=(-1100.3)    ;\n" for i in range(1, n // 30))
+        + "9999:  UFRAME[1:F]=PR[16] ;\n/POS\n/END\n"),
+    "ls many points": lambda n: ("p.ls", LS_MN + "/POS\n" + "".join(
+        f"P[{i}]{{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = 1.0 mm,\t"
+        "Y = 2.0 mm,\tZ = 3.0 mm,\n\tW = 0.0 deg,\tP = 0.0 deg,\tR = 0.0 deg\n};\n"
+        for i in range(n // 120)) + "/END\n"),
+    "ls long frame comment": lambda n: ("p.ls", LS_MN + "   1:  UFRAME[1:" + " " * n + "\n/POS\n/END\n"),
+    "dg many rows": lambda n: ("frame.dg", "User Frame\n" + "   0.0     0.0     0.0     0.0     0.0"
+                                                           "     0.0 \n" * (n // 50)),
+})
+FANUC_CLOSE = {".va": "\n[*SYSTEM*]$Z  Storage: CMOS  Access: RW  : INTEGER = 1\n",
+               ".ls": "\n   2:  UTOOL_NUM=1 ;\n/POS\n/END\n", ".dg": "\n\nTool Frame\n"}
+
 
 def _grid() -> dict:
     shapes = {}
@@ -188,6 +252,13 @@ def _grid() -> dict:
             shapes[f"grid krl {ctx} + {run}"] = (
                 lambda prefix, make: lambda n: ("g.dat", prefix + make(n) + "\nDEFDAT H\nENDDAT\n")
             )(prefix, make)
+        for suffix, contexts in ((".va", VA_CONTEXTS), (".ls", LS_CONTEXTS), (".dg", DG_CONTEXTS)):
+            for ctx, prefix in contexts.items():
+                name = f"grid {suffix[1:]} {ctx} + {run}"
+                shapes[name] = (lambda suffix, prefix, make: lambda n: (
+                    "g" + suffix, prefix + make(n)))(suffix, prefix, make)
+                shapes[name + ", closed"] = (lambda suffix, prefix, make: lambda n: (
+                    "g" + suffix, prefix + make(n) + FANUC_CLOSE[suffix]))(suffix, prefix, make)
     return shapes
 
 
@@ -252,6 +323,16 @@ def run_commands(name: str, text: str) -> None:
                 krl.positions(Document(raw, name), full=full)
             except UcsioError:
                 pass
+    # FANUC: what the readers beside the frames read (comments beside a
+    # sysframe.va, position registers, a program's points, curpos.dg)
+    from ucsio.parsing import dg, tp, va
+    readers = {".va": (va.frame_comments, va.position_registers), ".ls": (tp.positions,),
+               ".dg": (dg.frame_labels, dg.current_positions)}
+    for read in readers.get(name[name.rfind("."):], ()):
+        try:
+            read(Document(raw, name))
+        except UcsioError:
+            pass
 
 
 def timed(name: str, text: str, repeat: int) -> float:
@@ -291,6 +372,11 @@ def warm_up() -> None:
     run_commands(*krl(FRAME.format(i=0)))
     run_commands(*rapid("PERS num x:=[;\n"))
     run_commands(*krl("DECL FRAME f={X\n"))
+    run_commands("w.va", VA_ENTRY + "  X: 1.0   Y: 2.0   Z: 3.0\n  W: 0.0   P: 0.0   R: 0.0\n")
+    run_commands("w.va", VA_ENTRY + "  X: oops\n")
+    run_commands("w.ls", LS_MN + "   1:  UFRAME[1]=PR[1] ;\n/POS\n/END\n")
+    run_commands("w.ls", LS_MN + "   1:  UFRAME[1]=PR[1] ;\n/POS\nP[\n")
+    run_commands("frame.dg", "User Frame\n   1.0     2.0     3.0     4.0     5.0     6.0 A\n")
     run_commands("m.csv", CSV_HEAD + "P1,1,2,3,4,5,6,0,0,0\n")
 
 

@@ -52,6 +52,13 @@ TOKENS = [
     b"TOOL_DATA[1]=", b"BASE_NAME[1,]=", b"MACHINE_FRAME_DAT[1]={MACH_DEF_INDEX 1E400}\n",
     b"INT MAX_BASE=1E400\n", b"X", b"X.5", b"[" * 300, b"]" * 300, b"{X " * 300, b"}" * 300,
     b"- " * 300, b"a" * 2000,
+    # FANUC listings and programs
+    b"[*SYSTEM*]$MNUFRAME  Storage: SHADOW  Access: RW  : ARRAY[1,2] OF POSITION\n",
+    b"    [1,1] = ", b"'c'", b"  Group: 1   Config: N U T, 0, 0, 0", b"Config: ", b"  X: ",
+    b"  W: ", b"********", b"Uninitialized", b"J1 = ", b" deg", b" mm", b"Field: ",
+    b"/MN\n", b"/POS\n", b"/END\n", b"/PROG  P\n", b"   1:  ", b"UFRAME[", b"UTOOL[1:x]=PR[1] ;",
+    b"PR[1,1]=", b"(-", b"((", b"LPOS", b"LPOS-LPOS", b"R[", b"P[1]{", b"GP1:", b"};",
+    b"UF : 1, UT : 1,", b"X = ", b"    :  ", b"-.000", b".140",
 ]
 
 
@@ -59,10 +66,11 @@ def seed_files(max_size: int | None = None) -> list[Path]:
     """Real files first (the corpus, where it is beside the checkout), then
     our fixtures; optionally only those up to ``max_size`` bytes."""
     found = []
-    for folder in (CORPUS / "abb", CORPUS / "kuka", ROOT / "fixtures"):
+    for folder in (CORPUS / "abb", CORPUS / "kuka", CORPUS / "fanuc", ROOT / "fixtures"):
         if folder.is_dir():
             for p in sorted(folder.rglob("*")):
-                if p.is_file() and p.suffix.lower() in (".mod", ".modx", ".sys", ".prg", ".dat"):
+                if p.is_file() and p.suffix.lower() in (".mod", ".modx", ".sys", ".prg", ".dat",
+                                                        ".va", ".dg", ".ls"):
                     if max_size is None or p.stat().st_size <= max_size:
                         found.append(p)
     return found
@@ -197,14 +205,22 @@ def same_tree(ours, theirs) -> bool:
 def same_as_whole_tree(doc: Document, full, full_err) -> None:
     """``check`` (the recogniser over every byte, the fast path for frames)
     shows exactly what Lark's tree of every byte shows (``parse_whole``)."""
-    from ucsio.parsing import krl, rapid
+    from ucsio.parsing import fanuc, krl, rapid, tp, va
     from ucsio.parsing.controller import detect_vendor
-    from ucsio.parsing.document import looks_binary
+    from ucsio.parsing.document import looks_binary, lf_lines
 
     if looks_binary(doc.raw):
         return
-    module = rapid if detect_vendor(doc) == "abb" else krl
-    text = krl._lines(doc) if module is krl and doc.text.strip() else doc.text
+    vendor = detect_vendor(doc)
+    if vendor == "fanuc":
+        kind = fanuc.kind_of(doc)
+        text = lf_lines(doc.text)
+        if kind == "dg" or not text.strip() or (kind == "ls" and not tp.is_program(text)):
+            return          # no grammar: a diagnostic listing, a log, an empty file
+        module = va if kind == "va" else tp
+    else:
+        module = rapid if vendor == "abb" else krl
+        text = krl._lines(doc) if module is krl and doc.text.strip() else doc.text
     want = lark_tree(module, text)
     try:
         got = module._parser().parse(text, "file")

@@ -14,8 +14,13 @@ import fuzzing
 from conftest import FIXTURES
 
 SEEDS = fuzzing.seed_files(max_size=12_000)
-RAPID_SEEDS = [p for p in SEEDS if p.suffix.lower() != ".dat"]
+RAPID_SEEDS = [p for p in SEEDS if p.suffix.lower() in (".mod", ".modx", ".sys", ".prg")]
 KRL_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".dat"]
+# FANUC: the programs and listings under 12 KB, and one sysframe.va of each layout
+FANUC_SEEDS = [p for p in fuzzing.seed_files(max_size=40_000)
+               if p.suffix.lower() in (".va", ".dg", ".ls")
+               and (p.stat().st_size <= 12_000 or p.name.endswith(("UB10200_RBT01__sysframe.va",
+                                                                   "kjltvr411670r01__SYSFRAME.VA")))]
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -32,6 +37,12 @@ def test_mutated_rapid_files(seed, ops):
 @settings(max_examples=80, **SETTINGS)
 @given(seed=st.sampled_from(KRL_SEEDS), ops=ops)
 def test_mutated_krl_files(seed, ops):
+    fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
+
+
+@settings(max_examples=120, **SETTINGS)
+@given(seed=st.sampled_from(FANUC_SEEDS), ops=ops)
+def test_mutated_fanuc_files(seed, ops):
     fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
 
 

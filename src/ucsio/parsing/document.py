@@ -138,6 +138,14 @@ class Document:
 # a CR with no LF after its run ends a line by itself (classic Mac, a KRC
 # conversion script's mixed files): ``; note\rBASE_DATA[1]=...`` is two lines.
 _CR_RUN = regex.lazy(r"\r+\n?")
+# a CR that ends a line by itself: not followed by another CR or an LF
+_BARE_CR = regex.lazy(r"\r(?![\r\n])")
+
+
+def _bare_cr(text: str) -> bool:
+    """Whether a CR ends a line by itself somewhere in ``text`` (one scan in
+    C: a CRLF file has none, and its lines start after its LFs)."""
+    return "\r" in text and _BARE_CR.search(text) is not None
 
 
 def line_starts(text: str) -> list[int]:
@@ -145,7 +153,7 @@ def line_starts(text: str) -> list[int]:
     Linear in the text, however many CRs stand in a row."""
     starts = [0]
     append = starts.append
-    if "\r" not in text:
+    if not _bare_cr(text):
         find = text.find
         i = find("\n")
         while i != -1:
@@ -183,10 +191,28 @@ def lf_lines(text: str) -> str:
     """``text`` with every bare CR (one that ends a line by itself) made an LF:
     the same length and offsets, for scanners and grammars whose lines end
     at LF (KRL)."""
-    if "\r" not in text:
+    if not _bare_cr(text):
         return text
     return _CR_RUN.sub(lambda m: m.group() if m.group().endswith("\n") else "\n" * len(m.group()),
                        text)
+
+
+def masked(text: str, spans: list[tuple[int, int]]) -> str:
+    """``text`` with every character outside ``spans`` (sorted) replaced by
+    a space, newlines kept: same length, same offsets, same line numbers
+    (the fast paths' copy of a file with only the lines they read)."""
+    out = []
+    pos = 0
+    for s, e in spans:
+        if s < pos:          # a line matched twice
+            continue
+        if s > pos:
+            out.append("\n".join([" " * len(part) for part in text[pos:s].split("\n")]))
+        out.append(text[s:e])
+        pos = e
+    if pos < len(text):
+        out.append("\n".join([" " * len(part) for part in text[pos:].split("\n")]))
+    return "".join(out)
 
 
 def looks_binary(raw: bytes, limit: int = 4096) -> bool:

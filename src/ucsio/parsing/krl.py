@@ -52,7 +52,7 @@ from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
 from . import regex
 from .controller import ControllerFile
-from .document import Document, Span, lf_lines
+from .document import Document, Span, lf_lines, masked
 from .lalr import Rejected, Token, Tree, paused_gc
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
@@ -391,23 +391,6 @@ _PLAIN_LHS = regex.lazy(r"(?P<name>[A-Za-z_$][A-Za-z0-9_$]*)(?:\[(?P<index>[0-9]
 # words the grammar reads as keywords, never as an assignment's name
 _KEYWORDS = {"DECL", "GLOBAL", "CONST", "STRUC", "ENUM", "SIGNAL", "EXT", "EXTP", "EXTFCT",
              "EXTFCTP", "CHANNEL", "IMPORT", "DEFDAT", "ENDDAT", "PUBLIC", "TRUE", "FALSE"}
-
-
-def masked(text: str, spans: list[tuple[int, int]]) -> str:
-    """``text`` with every character outside ``spans`` replaced by a space,
-    newlines kept: same length, same offsets, same line numbers."""
-    out = []
-    pos = 0
-    for s, e in spans:
-        if s < pos:          # a line matched twice
-            continue
-        if s > pos:
-            out.append("\n".join([" " * len(part) for part in text[pos:s].split("\n")]))
-        out.append(text[s:e])
-        pos = e
-    if pos < len(text):
-        out.append("\n".join([" " * len(part) for part in text[pos:].split("\n")]))
-    return "".join(out)
 
 
 # -- parsing -------------------------------------------------------------------

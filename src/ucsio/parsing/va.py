@@ -24,8 +24,10 @@ for KRL (ucsio.parsing.krl):
   line blanked except the heads, the first line and the frame records (the
   offsets and line numbers stay the file's). An element whose value and
   lines repeat an earlier one's text exactly (the unset frames, all 0, that
-  fill most of a sysframe.va) is blanked too and shares that element's
-  reading, moved to its own offsets: a 100 KB sysframe.va costs the parse
+  fill most of a sysframe.va) is blanked too: its line up to the "=" is
+  what the grammar's INDEX and "=" read (the outline's pattern is theirs),
+  the rest is text the grammar read once already; it shares that element's
+  reading, moved to its own offsets. A 100 KB sysframe.va costs the parse
   of its distinct elements, not of 3,000 lines.
 
 Both paths give the same frames and lints (tests/test_fanuc.py checks it on
@@ -36,10 +38,10 @@ from __future__ import annotations
 import re
 
 from ..errors import UcsioError
-from ..geometry.frames import Number
+from ..geometry.frames import Frame, Number
 from . import fanuc
 from .controller import ControllerFile
-from .document import Document, Span, lf_lines
+from .document import Document, Span, lf_lines, masked
 from .lalr import Rejected, Tree
 
 START = ("file",)
@@ -56,8 +58,9 @@ SETUP_KINDS = {1: "UTOOL", 3: "UFRAME"}
 # (searched in "\n" + text: offsets one more than in the text)
 _HEAD_LINE = re.compile(r"\n[ \t\f\r]*\[[^\]\n0-9 ,][^\]\n]*\]([^\s]+)")
 _FIRST = re.compile(r"[^\s]")
-# an element's line up to its "=" (searched in "\n" + text)
-_ELEMENT = re.compile(r"\n[ \t\f\r]*\[[0-9 ,]*\][ \t\f\r]*=")
+# an element's line up to its "=": the grammar's WS? INDEX WS? "=" (searched
+# in "\n" + text; group 1 the INDEX)
+_ELEMENT = re.compile(r"\n[ \t\f\r]*(\[[0-9 ,]*\])[ \t\f\r]*=")
 # FRAMEVAR.VA: a SETUP_DATA comment that is not empty
 _COMMENT_FIELD = re.compile(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
                             r"[ \t\f\r]*'[^'\n]")
@@ -87,11 +90,12 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
     """The spans the fast path keeps: every record's head line, the file's
     first line, and where ``wanted(name)`` says "record" the whole record
     (its repeated elements blanked: see the module's doc) or "comments" its
-    SETUP_DATA comment lines. Returns (spans, shared), ``shared`` mapping an
-    element's INDEX offset to (the first such element's INDEX offset, offset
-    from there to here)."""
+    SETUP_DATA comment lines. Returns (spans, shared), ``shared`` mapping the
+    INDEX offset of an element left out to (its INDEX text, the INDEX offset
+    of the first element with its text, the offset from that one's "=" to
+    this one's)."""
     spans = []
-    shared: dict[int, tuple[int, int]] = {}
+    shared: dict[int, tuple[str, int, int]] = {}
     seen: dict[str, tuple[int, int]] = {}
     first = _FIRST.search(text)
     if first is not None:
@@ -120,32 +124,27 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
 
 def _record_spans(text: str, start: int, end: int, seen: dict,
                   shared: dict) -> list[tuple[int, int]]:
-    """A frame record's text as spans, each element's value and lines left
-    out where an earlier element of the file wrote exactly the same
-    (``seen``: that text -> (INDEX offset, offset after its "=") of the
+    """A frame record's text as spans, each element left out where an
+    earlier element of the file wrote exactly the same after its "="
+    (``seen``: that text -> (INDEX offset, offset after the "=") of the
     first; ``shared`` gets the later ones)."""
     nl = "\n" + text
-    marks = [(m.start(), m.end() - 1) for m in _ELEMENT.finditer(nl, start + 1, end + 1)]
+    # (line start, INDEX offset, INDEX text, offset after the "="), in text offsets
+    marks = [(m.start(), m.start(1) - 1, m.group(1), m.end() - 1)
+             for m in _ELEMENT.finditer(nl, start + 1, end + 1)]
     if not marks:
         return [(start, end)]
     spans = []
     pos = start
-    for i, (line, eq) in enumerate(marks):
+    for i, (line, index, key, eq) in enumerate(marks):
         tail_end = marks[i + 1][0] if i + 1 < len(marks) else end
-        key = text[eq:tail_end]
-        index = line + len(text[line:eq]) - len(text[line:eq].lstrip(" \t\f\r"))
-        src = seen.setdefault(key, (index, eq))
+        src = seen.setdefault(text[eq:tail_end], (index, eq))
         if src[0] != index:
-            spans.append((pos, eq))             # up to and with the "="
+            spans.append((pos, line))
             pos = tail_end
-            shared[index] = (src[0], eq - src[1])
+            shared[index] = (key, src[0], eq - src[1])
     spans.append((pos, end))
     return [s for s in spans if s[0] < s[1]]
-
-
-def masked(text: str, spans) -> str:
-    from .krl import masked as krl_masked
-    return krl_masked(text, spans)
 
 
 # -- parsing -----------------------------------------------------------------------
@@ -288,9 +287,8 @@ class Record:
 
 
 def records(tree: Tree, doc: Document, shared: dict | None = None) -> list[Record]:
-    """The records of a tree, read; ``shared`` (the fast path): an element
-    blanked because it repeats an earlier one takes that one's Entry."""
-    shared = shared or {}
+    """The records of a tree, read; ``shared`` (the fast path): the elements
+    left out because they repeat an earlier one, which take its Entry."""
     read: dict[int, Entry] = {}
     out = []
     for node in tree.children:
@@ -318,14 +316,27 @@ def records(tree: Tree, doc: Document, shared: dict | None = None) -> list[Recor
                 key_tok = mc[1]
                 rest = [c for c in mc[2:] if getattr(c, "type", None) != "DESC"]
             pos = key_tok.start_pos
-            if pos in shared:
-                src, delta = shared[pos]
-                r.members.append(Member(m.data, key_tok.value, pos, read[src], delta))
-            else:
-                e = read[pos] = _entry(rest)
-                r.members.append(Member(m.data, key_tok.value, pos, e))
+            e = read[pos] = _entry(rest)
+            r.members.append(Member(m.data, key_tok.value, pos, e))
         out.append(r)
+    if shared:
+        _rejoin(out, shared, read)
     return out
+
+
+def _rejoin(recs: list[Record], shared: dict, read: dict) -> None:
+    """Put the elements the fast path left out back into their records, in
+    file order, each with the Entry of the element it repeats."""
+    import bisect
+    heads = [r.head_pos for r in recs]
+    touched = set()
+    for pos in sorted(shared):
+        key, src, delta = shared[pos]
+        i = bisect.bisect_right(heads, pos) - 1
+        recs[i].members.append(Member("element", key, pos, read[src], delta))
+        touched.add(i)
+    for i in touched:
+        recs[i].members.sort(key=lambda m: m.pos)
 
 
 def _type_of(desc: str):
@@ -346,14 +357,20 @@ def _index(text: str):
     """[1,2] -> (1, 2); None for anything else."""
     parts = text[1:-1].split(",")
     try:
-        got = tuple(int(p) for p in parts)
+        got = tuple(map(int, parts))
     except ValueError:
         return None
-    return got if all(len(p.strip()) < 10 for p in parts) else None
+    if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
+        return None         # a 10-digit index: not a frame's
+    return got
 
 
-def _moved(n: Number, delta: int) -> Number:
-    return Number(Span(n.span.start + delta, n.span.end + delta), n.text, n.value) if delta else n
+def _moved(numbers: dict, delta: int) -> dict:
+    """``numbers`` (component -> Number) ``delta`` characters further on."""
+    if not delta:
+        return dict(numbers)
+    return {k: Number(Span(n.span.start + delta, n.span.end + delta), n.text, n.value)
+            for k, n in numbers.items()}
 
 
 # -- frames ---------------------------------------------------------------------------
@@ -388,6 +405,7 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
     that repeats it (the fast path's shared ones) moves them to its offsets."""
     doc = cf.document
     ftype = FRAME_RECORDS[r.name.upper()]
+    reference = fanuc.KINDS[ftype][1]
     dims = r.dims
     if dims is None or len(dims) != 2 or r.elem_type.upper() != "POSITION":
         cf.lint(r.head_pos, "not-a-frame-array",
@@ -413,26 +431,29 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
         if e.group is not None and e.group != g:
             cf.lint(e.group_pos + delta, "group-mismatch",
                     f"{name}: the element [{g},{n}] says Group: {e.group}")
+        # the element's own comment ([1,1] =   'FIXTURE'), else the one beside it
+        label = (e.comment or "").strip() or labels.get((ftype, n, g))
         got = made.get(id(e))
         if got is None:
             before = len(cf.lints)
             numbers = _frame_numbers(cf, r.name + m.key, e, m.pos, delta)   # at e's offsets
-            pose, clean = None, len(cf.lints) == before
-        else:
-            (numbers, pose), clean = got, False
-        info = {"config": (e.config.strip() or None) if e.config is not None else None}
-        # the element's own comment ([1,1] =   'FIXTURE'), else the one beside it
-        label = (e.comment or "").strip() or labels.get((ftype, n, g))
-        fr = fanuc.make_frame(doc, ftype, n, g, line,
-                              numbers and {k: _moved(v, delta) for k, v in numbers.items()},
-                              label=label, info=info, pose=pose)
-        if clean:
-            made[id(e)] = (numbers, fr.pose)
-        if name.upper() in seen:
+            info = {"config": (e.config.strip() or None) if e.config is not None else None}
+            fr = fanuc.make_frame(doc, ftype, n, g, line, numbers and _moved(numbers, delta),
+                                  label=label, info=info)
+            if len(cf.lints) == before:
+                made[id(e)] = (numbers, fr)
+        else:                            # as the element it repeats, at its own place
+            numbers, like = got
+            info = dict(like.info)
+            info["group"] = g
+            fr = Frame(name, fanuc.VENDOR, ftype, like.pose, doc.path, line, reference, label,
+                       numbers and _moved(numbers, delta), info, doc)
+        key = name.upper()
+        if key in seen:
             cf.lint(m.pos, "duplicate-frame",
-                    f"{name} is listed twice (lines {seen[name.upper()]} and {line})")
+                    f"{name} is listed twice (lines {seen[key]} and {line})")
         else:
-            seen[name.upper()] = line
+            seen[key] = line
         cf.frames.append(fr)
 
 

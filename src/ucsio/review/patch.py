@@ -613,7 +613,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     where = {"file": frame.file, "line": frame.line}
     if frame.vendor == "fanuc":
         raise UcsioError(f"{frame.name}: ucsio reads FANUC files but does not write them yet",
-                         **where)
+                         col=1, **where)
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
                          f"{frame.info.get('ufmec')!r}): the controller sets it; not patchable",
