@@ -23,8 +23,8 @@ from ..parsing.document import Document, text_lines
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
 from .unset import is_set, warning as unset_warning
-from .patch import (_close32, measured_in_parent, object_frame_basis, poses_equal,
-                    reference_problem, resolve_name)
+from .patch import (_close32, common_ends, measured_in_parent, object_frame_basis, poses_equal,
+                    reference_problem, resolve_name, unified_lines)
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -319,9 +319,7 @@ def git_diff(path: str, old_file: str, new_file: str) -> tuple[str, dict | None]
 
 
 def _unified(a: list[str], b: list[str], old_label: str, new_label: str) -> str:
-    import difflib
-
-    return "\n".join(difflib.unified_diff(a, b, old_label, new_label, lineterm="")) + "\n"
+    return "\n".join(unified_lines(a, b, old_label, new_label, 3)) + "\n"
 
 
 def _lines(cf: ControllerFile | None) -> list[str]:
@@ -352,13 +350,16 @@ def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None,
     reviewer sees its text change rather than nothing)."""
     a, b = _lines(old), _lines(new)
     fa, fb = _frame_lines(old, reported), _frame_lines(new, reported)
+    # the lines both share at the ends are unchanged; the matcher reads the
+    # rest (on all of a listing's equal lines it crawls)
+    lo, hi = common_ends(a, b)
     import difflib
 
-    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
+    matcher = difflib.SequenceMatcher(None, a[lo:len(a) - hi], b[lo:len(b) - hi], autojunk=False)
     for tag, i1, i2, j1, j2 in matcher.get_opcodes():
         if tag == "equal":
             continue
-        if not (set(range(i1, i2)) <= fa and set(range(j1, j2)) <= fb):
+        if not (set(range(lo + i1, lo + i2)) <= fa and set(range(lo + j1, lo + j2)) <= fb):
             return True
     return False
 

@@ -545,23 +545,40 @@ def unified_diff(doc: Document, new_bytes: bytes, label: str | None = None, n: i
     end = starts[bottom] if bottom < len(starts) else len(old_text)
     a = text_lines(old_text[begin:end])
     b = text_lines(new_text[begin:end + len(new_text) - len(old_text)])
+    out = unified_lines(a, b, f"a/{label}", f"b/{label}", n, shift=top)
+    return "\n".join(out) + ("\n" if new_text != old_text else "")
+
+
+def common_ends(a: list, b: list) -> tuple[int, int]:
+    """How many items two sequences share at their start, and then at their end."""
     lo, limit = 0, min(len(a), len(b))
     while lo < limit and a[lo] == b[lo]:
         lo += 1
     hi = 0
     while hi < limit - lo and a[-1 - hi] == b[-1 - hi]:
         hi += 1
+    return lo, hi
+
+
+def unified_lines(a: list[str], b: list[str], old_label: str, new_label: str, n: int,
+                  shift: int = 0):
+    """difflib.unified_diff of two lists of lines, its hunk headers ``shift``
+    lines further on. Only the lines between what the two share at both ends
+    (and ``n`` of those, the context) go to difflib: its matcher slows to a
+    crawl on the thousands of equal lines of a listing (a sysframe.va's
+    unset frames)."""
+    lo, hi = common_ends(a, b)
     lo, hi = max(0, lo - n), max(0, hi - n)
     import difflib          # only where a diff is shown
 
-    out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], f"a/{label}", f"b/{label}",
+    out = difflib.unified_diff(a[lo:len(a) - hi], b[lo:len(b) - hi], old_label, new_label,
                                n=n, lineterm="")
-    shift = top + lo
+    shift += lo
     if shift:
         out = (_HUNK.sub(lambda m: f"@@ -{int(m[1]) + shift}{m[2] or ''} "
                                    f"+{int(m[3]) + shift}{m[4] or ''} @@", line, count=1)
                if line.startswith("@@") else line for line in out)
-    return "\n".join(out) + ("\n" if new_text != old_text else "")
+    return out
 
 
 def _common_run(a: str, b: str, limit: int, from_end: bool = False) -> int:
