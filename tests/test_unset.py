@@ -113,3 +113,35 @@ def test_batch_and_its_report_warn_when_the_simulated_frame_is_unset(tmp_path, c
     assert unused["simulated_set"] is False
     assert any("is unset" in w for w in unused["warnings"])
     assert named["simulated_set"] is True and "warnings" not in named
+
+
+# -- FANUC: sysframe.va's entries are the same kind of table -----------------------------
+def test_fanuc_unset_is_a_zero_entry_without_a_comment(capsys):
+    from conftest import corpus_file as corpus
+    got = frames_json(corpus("fanuc", "irbzavalagit__UB10200_RBT01__sysframe.va"), capsys)
+    set_ = sorted(name for name, f in got.items() if f["set"])
+    assert set_ == sorted(["UF1", "UF9", "UF19", "UF20", "UT1", "UT10", "UT31", "UT32"])
+    assert got["UF2"]["set"] is False and got["UT1@2"]["set"] is False
+    labelled = frames_json(FIXTURES / "fanuc" / "sysframe_comment.va", capsys)
+    assert labelled["UF3"]["set"] is False              # zero, and its comment is ''
+    assert labelled["UF1@2"]["set"] is True             # values (and 'RAIL')
+    assert main(["frames", str(FIXTURES / "fanuc" / "sysframe_comment.va")]) == 0
+    out = capsys.readouterr().out
+    assert "UF3 " not in out and "5 unset frames not listed" in out and "FIXTURE_A" in out
+
+
+def test_a_frame_a_program_sets_is_set_whatever_its_values(tmp_path, capsys):
+    prog = tmp_path / "zero.ls"
+    prog.write_text("/PROG  ZERO\n/ATTR\n/MN\n   1:  PR[1]=LPOS-LPOS    ;\n"
+                    "   2:  UFRAME[3]=PR[1] ;\n/POS\n/END\n")
+    got = frames_json(prog, capsys)
+    assert got["UF3"]["set"] is True and got["UF3"]["x"] == 0.0
+
+
+def test_diff_warns_on_an_unset_fanuc_frame(tmp_path, capsys):
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"frame": {"x": 1, "y": 2, "z": 3, "a": 0, "b": 0, "c": 0}}))
+    va = FIXTURES / "fanuc" / "sysframe_comment.va"
+    assert main(["diff", str(va), "--frame", "UF3", "--measured", str(sol), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["set"] is False and "UF3 is unset" in d["warning"]

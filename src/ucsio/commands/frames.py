@@ -10,9 +10,10 @@ ARCHIVE.zip!path). A file that cannot be read is reported on stderr (with
 if any could not be read. A FANUC backup's binary files (.tp .sv .vr) are
 counted as not read (--json: "not_read").
 
-Unset frames (KUKA configuration entries whose six values are all 0 and that
-have no name: the controller's defaults, which fill most of a $config.dat)
-are counted in one line, not listed; --all lists them too. --json always
+Unset frames (KUKA configuration entries and FANUC sysframe.va entries whose
+six values are all 0 and that have no name: the controller's defaults, which
+fill most of a $config.dat or a sysframe.va) are counted in one line, not
+listed; --all lists them too. --json always
 holds every frame, each with "set" (true or false)."""
 from __future__ import annotations
 
@@ -24,7 +25,8 @@ def add_arguments(p) -> None:
                    help="RAPID module, KRL .dat file, FANUC .va/.ls file, backup folder or "
                         ".zip archive")
     p.add_argument("--all", action="store_true",
-                   help="also list unset frames (KUKA entries all 0 and without a name)")
+                   help="also list unset frames (KUKA and FANUC entries all 0 and without a "
+                        "name)")
 
 
 def run(args) -> int:

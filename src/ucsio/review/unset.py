@@ -1,4 +1,4 @@
-"""Unset frames: the defaults a KUKA controller's configuration is full of.
+"""Unset frames: the defaults a KUKA or FANUC controller's configuration is full of.
 
 A real ``$config.dat`` declares 16 tools, 32 bases, 16 reference points and
 a few correction frames, and most of them hold the controller's default: all
@@ -12,6 +12,12 @@ six values 0 and a blank name. Nobody taught or named them. A frame is
 - it has no name: no ``BASE_NAME[n,]``/``TOOL_NAME[n,]`` entry, a blank one
   (the controller writes ``" "``), or one that only repeats the entry's own
   name (``TOOL_NAME[2,]="TOOL_DATA[2]"`` stands in a real $config.dat).
+
+FANUC's sysframe.va is the same kind of table: ``$MNUFRAME`` and
+``$MNUTOOL`` list every user and tool frame of every group, and an entry
+whose six values X, Y, Z, W, P, R are all exactly 0 and that has no comment
+(its own, or from frame.dg / FRAMEVAR.VA beside it) is unset too. A frame a
+TP program sets is set, whatever its values: the program says so.
 
 Everything else is set: a named zero base (someone chose it), the FRAMEs a
 program's ``.dat`` declares (a ``NULLFRAME`` someone wrote), every ABB frame
@@ -36,9 +42,12 @@ def configuration(cf) -> bool:
 
 def is_set(frame, cf=None) -> bool:
     """False for an unset frame (module docstring); ``cf``: the file it is in."""
-    if frame.vendor != "kuka" or frame.pose is None:
+    if frame.vendor not in ("kuka", "fanuc") or frame.pose is None:
         return True
-    if frame.type not in TABLES and not (frame.type == "FRAME" and configuration(cf)):
+    if frame.vendor == "fanuc":
+        if "set_from" in frame.info:        # a program's UFRAME[k]=PR[n]
+            return True
+    elif frame.type not in TABLES and not (frame.type == "FRAME" and configuration(cf)):
         return True
     nums = frame.numbers
     if len(nums) != 6 or any(n.value != 0 for n in nums.values()):
