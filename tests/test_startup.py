@@ -63,12 +63,16 @@ def test_listing_a_file_imports_nothing_it_does_not_need(tmp_path):
     file's frames, and only json (the solution) to diff one frame."""
     mod = FIXTURES / "abb" / "two_modules_crcrlf.prg"
     dat = FIXTURES / "kuka" / "cell_config.dat"
+    va = FIXTURES / "fanuc" / "sysframe_comment.va"
+    ls = FIXTURES / "fanuc" / "program_frames.ls"
     sol = tmp_path / "sol.json"
     sol.write_text(json.dumps({"frame": {"x": 101, "y": 200, "z": 300, "a": 0, "b": 0, "c": 0}}))
     import os
     env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
-    for args, allowed in ((["frames", mod], ()), (["frames", dat], ()),
-                          (["diff", mod, "--frame", "wobjA", "--measured", sol], ("json",))):
+    for args, allowed in ((["frames", mod], ()), (["frames", dat], ()), (["frames", va], ()),
+                          (["frames", ls], ()),
+                          (["diff", mod, "--frame", "wobjA", "--measured", sol], ("json",)),
+                          (["diff", va, "--frame", "UF1", "--measured", sol], ("json",))):
         for _ in range(2):          # the first run builds the caches
             res = subprocess.run([sys.executable, "-c", MODULES_PROBE, *map(str, args)],
                                  capture_output=True, text=True, env=env, check=True)

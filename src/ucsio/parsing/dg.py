@@ -21,28 +21,26 @@ anchored patterns: linear in the file, whatever it holds.
 """
 from __future__ import annotations
 
-import re
-
 from ..geometry.frames import Number, Pose
 from ..values import Value
-from . import fanuc
+from . import fanuc, regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines
 
 _N = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"
 _TABLES = {"tool frame": "UTOOL", "jog frame": None, "user frame": "UFRAME"}
-_ROW = re.compile(r"[ \t\f\r]*(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)"
+_ROW = regex.lazy(r"[ \t\f\r]*(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)"
                   r"[ \t]+(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)[ \t]+(" + _N + r"|\*+)"
                   r"(?:[ \t]([^\n]*))?\Z")
 _CURRENT = "CURRENT ROBOT POSITION"
-_GROUP = re.compile(r"[ \t]*Group[ \t]*#:[ \t]*([0-9]+)[ \t\f\r]*\Z")
-_JOINT = re.compile(r"[ \t]*Joint[ \t]+([0-9]+)[ \t]*:[ \t]*([^\s]*)[ \t\f\r]*\Z")
-_FRAME_TOOL = re.compile(r"[ \t]*Frame[ \t]*#:[ \t]*([0-9]+)[ \t]+Tool[ \t]*#:[ \t]*([0-9]+)"
+_GROUP = regex.lazy(r"[ \t]*Group[ \t]*#:[ \t]*([0-9]+)[ \t\f\r]*\Z")
+_JOINT = regex.lazy(r"[ \t]*Joint[ \t]+([0-9]+)[ \t]*:[ \t]*([^\s]*)[ \t\f\r]*\Z")
+_FRAME_TOOL = regex.lazy(r"[ \t]*Frame[ \t]*#:[ \t]*([0-9]+)[ \t]+Tool[ \t]*#:[ \t]*([0-9]+)"
                          r"[ \t\f\r]*\Z")
-_TOOL = re.compile(r"[ \t]*Tool[ \t]*#:[ \t]*([0-9]+)[ \t\f\r]*\Z")
-_VALUE = re.compile(r"[ \t]*([XYZWPR])[ \t]*:[ \t]*([^\s]*)[ \t\f\r]*\Z")
-_CFG = re.compile(r"[ \t]*CFG[ \t]*:[ \t]*([^\n]*?)[ \t\f\r]*\Z")
-_NUMBER = re.compile(_N + r"\Z")
+_TOOL = regex.lazy(r"[ \t]*Tool[ \t]*#:[ \t]*([0-9]+)[ \t\f\r]*\Z")
+_VALUE = regex.lazy(r"[ \t]*([XYZWPR])[ \t]*:[ \t]*([^\s]*)[ \t\f\r]*\Z")
+_CFG = regex.lazy(r"[ \t]*CFG[ \t]*:([^\n]*)\Z")
+_NUMBER = regex.lazy(_N + r"\Z")
 
 
 def _lines(doc: Document):
@@ -192,7 +190,7 @@ def current_positions(doc: Document) -> list[CurrentPosition]:
             continue
         m = _CFG.match(line)
         if m is not None and section in ("user", "world"):
-            setattr(cur, f"{section}_config", m.group(1))
+            setattr(cur, f"{section}_config", m.group(1).strip())
             continue
         m = _VALUE.match(line)
         if m is not None and section in ("user", "world"):

@@ -22,10 +22,10 @@ matrix with A = R, B = P, C = W (ucsio.geometry.rotations).
 from __future__ import annotations
 
 import os
-import re
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, Pose
+from . import regex
 from .document import Document
 
 VENDOR = "fanuc"
@@ -233,7 +233,7 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
     raise exc
 
 
-_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
+_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
 
 
 def _bad_number(text: str, pos: int):

@@ -38,22 +38,22 @@ import re
 
 from ..geometry.frames import Number
 from ..values import Value
-from . import fanuc
+from . import fanuc, regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines
 from .lalr import Rejected, Tree
 
 START = ("file",)
 AXES = fanuc.COMPONENTS
-_SECTION_LINE = re.compile(r"^[ \t\f\r]*/(?:PROG|MN|POS|END)(?![A-Za-z0-9_])", re.M)
-_POS_LINE = re.compile(r"^[ \t\f\r]*/POS(?![A-Za-z0-9_])[^\n]*", re.M)
-_END_LINE = re.compile(r"^[ \t\f\r]*/END(?![A-Za-z0-9_])", re.M)
-_LITERAL_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
+_SECTION_LINE = regex.lazy(r"^[ \t\f\r]*/(?:PROG|MN|POS|END)(?![A-Za-z0-9_])", re.M)
+_POS_LINE = regex.lazy(r"^[ \t\f\r]*/POS(?![A-Za-z0-9_])[^\n]*", re.M)
+_END_LINE = regex.lazy(r"^[ \t\f\r]*/END(?![A-Za-z0-9_])", re.M)
+_LITERAL_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
 # PR[8]=PR[8]-PR[8]: the register zeroed (the value's text, any comments)
-_SELF_MINUS = re.compile(r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*-[ \t]*"
+_SELF_MINUS = regex.lazy(r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*-[ \t]*"
                          r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*;[ \t\f\r]*\Z")
-_FRAME_HEAD = re.compile(r"U(?:FRAME|TOOL)[ \t]*\[")
-_DEFAULT_GROUP = re.compile(r"DEFAULT_GROUP[ \t]*=[ \t]*([^;\n]*)")
+_FRAME_HEAD = regex.lazy(r"U(?:FRAME|TOOL)[ \t]*\[")
+_DEFAULT_GROUP = regex.lazy(r"DEFAULT_GROUP[ \t]*=[ \t]*([^;\n]*)")
 ZERO = Number(Span(0, 0), "0", 0.0)     # a component LPOS-LPOS made 0: written nowhere
 
 

@@ -39,7 +39,7 @@ import re
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number
-from . import fanuc
+from . import fanuc, regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines, masked
 from .lalr import Rejected, Tree
@@ -56,17 +56,17 @@ SETUP_KINDS = {1: "UTOOL", 3: "UFRAME"}
 # -- the outline ---------------------------------------------------------------------
 # a record's head line: its tag and name as the grammar's HEAD reads them
 # (searched in "\n" + text: offsets one more than in the text)
-_HEAD_LINE = re.compile(r"\n[ \t\f\r]*\[[^\]\n0-9 ,][^\]\n]*\]([^\s]+)")
-_FIRST = re.compile(r"[^\s]")
+_HEAD_LINE = regex.lazy(r"\n[ \t\f\r]*\[[^\]\n0-9 ,][^\]\n]*\]([^\s]+)")
+_FIRST = regex.lazy(r"[^\s]")
 # an element's line up to its "=": the grammar's WS? INDEX WS? "=" (searched
 # in "\n" + text; group 1 the INDEX)
-_ELEMENT = re.compile(r"\n[ \t\f\r]*(\[[0-9 ,]*\])[ \t\f\r]*=")
+_ELEMENT = regex.lazy(r"\n[ \t\f\r]*(\[[0-9 ,]*\])[ \t\f\r]*=")
 # FRAMEVAR.VA: a SETUP_DATA comment that is not empty
-_COMMENT_FIELD = re.compile(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
+_COMMENT_FIELD = regex.lazy(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
                             r"[ \t\f\r]*'[^'\n]")
 # a record's type, from its DESC: ... : ARRAY[2,32] OF POSITION
-_ARRAY = re.compile(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
-_PATH_INDEX = re.compile(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
+_ARRAY = regex.lazy(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
+_PATH_INDEX = regex.lazy(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
 
 
 def _records(text: str):
