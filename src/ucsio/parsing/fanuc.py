@@ -25,7 +25,6 @@ import os
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, Pose
-from . import regex
 from .document import Document
 
 VENDOR = "fanuc"
@@ -210,6 +209,7 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
     from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
 
     if isinstance(exc, (UnexpectedCharacters, UnexpectedToken)):
+        from .krl import _bad_number      # '1.2.3', '1e', '12ab': the same words in every listing
         bad = _bad_number(text, exc.pos_in_stream if isinstance(exc, UnexpectedCharacters)
                           else exc.token.start_pos if exc.token.type != "$END" else len(text))
         if bad is not None:
@@ -231,26 +231,6 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
         return doc.error(f"{what}: unexpected {_shown(text, pos, len(tok.value))}{expected}",
                          pos)
     raise exc
-
-
-_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
-
-
-def _bad_number(text: str, pos: int):
-    """(start, end) of a malformed number at or just before ``pos``
-    ('12.3.4', '1e', '12ab'), else None."""
-    n = len(text)
-    s = pos
-    while s > 0 and (text[s - 1].isalnum() or text[s - 1] in ".+-"):
-        s -= 1
-    e = pos
-    while e < n and (text[e].isalnum() or text[e] in ".+-"):
-        e += 1
-    word = text[s:e]
-    if not word or not (word[0].isdigit() or word[0] in ".+-") or \
-            not any(c.isdigit() for c in word) or _NUMBER.match(word):
-        return None
-    return s, e
 
 
 def _shown(text: str, pos: int, length: int = 1) -> str:

@@ -165,8 +165,6 @@ def _interpret(doc: Document, tree: Tree) -> ControllerFile:
                     group = _default_group(m.group(1))
         elif node.data == "mn":
             _main(cf, node, group)
-        elif node.data == "pos":
-            cf.extra["positions"] = _positions(doc, node)
     if tree.children and getattr(tree.children[-1], "type", None) == "LINE":
         tok = tree.children[-1]
         cf.lint(tok.start_pos, "after-end", f"text after /END on its line ({tok.value[:30]!r}): "

@@ -69,14 +69,14 @@ _ARRAY = regex.lazy(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
 _PATH_INDEX = regex.lazy(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
 
 
-def _records(text: str):
+def _records(nl: str):
     """(offset of the head line's start, name upper-case, end) of each
-    record, in order: a record runs to the next head line."""
-    nl = "\n" + text
+    record of ``nl`` ("\n" + the text), in text offsets: a record runs to
+    the next head line."""
     heads = [(m.start(), m.group(1).upper()) for m in _HEAD_LINE.finditer(nl)]
     out = []
     for i, (start, name) in enumerate(heads):
-        end = heads[i + 1][0] if i + 1 < len(heads) else len(text)
+        end = heads[i + 1][0] if i + 1 < len(heads) else len(nl) - 1
         out.append((start, name, end))
     return out
 
@@ -101,15 +101,15 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
     if first is not None:
         s = text.rfind("\n", 0, first.start()) + 1
         spans.append((s, _line_end(text, s)))
-    for start, name, end in _records(text):
+    nl = "\n" + text           # the line patterns start with the "\n" before a line
+    for start, name, end in _records(nl):
         head_end = _line_end(text, start)
         how = wanted(name)
         if how == "record":
-            spans += _record_spans(text, start, end, seen, shared)
+            spans += _record_spans(text, nl, start, end, seen, shared)
         else:
             spans.append((start, head_end))
             if how == "comments":
-                nl = "\n" + text
                 for m in _COMMENT_FIELD.finditer(nl, head_end + 1, end + 1):
                     s = m.start()           # the "\n" in nl: the line's start in text
                     spans.append((s, _line_end(text, s)))
@@ -122,13 +122,12 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
     return merged, shared
 
 
-def _record_spans(text: str, start: int, end: int, seen: dict,
+def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
                   shared: dict) -> list[tuple[int, int]]:
     """A frame record's text as spans, each element left out where an
     earlier element of the file wrote exactly the same after its "="
     (``seen``: that text -> (INDEX offset, offset after the "=") of the
-    first; ``shared`` gets the later ones)."""
-    nl = "\n" + text
+    first; ``shared`` gets the later ones). ``nl``: "\n" + ``text``."""
     # (line start, INDEX offset, INDEX text, offset after the "="), in text offsets
     marks = [(m.start(), m.start(1) - 1, m.group(1), m.end() - 1)
              for m in _ELEMENT.finditer(nl, start + 1, end + 1)]
