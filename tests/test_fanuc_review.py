@@ -290,3 +290,20 @@ def test_one_fanuc_frame_against_a_measurement(tmp_path):
         (d["dc"], d["db"], d["da"])
     res = run("diff", va, "--frame", "UF1", "--measured", sol, "--points")
     assert res.returncode == 0 and "not read yet" in res.stderr
+
+
+@needs_corpus
+def test_a_zipped_fanuc_backup_is_read_in_place_with_its_labels(tmp_path):
+    import zipfile
+    folder = ub_backup(tmp_path / "UB10200_RBT01")
+    archive = tmp_path / "UB10200.zip"
+    with zipfile.ZipFile(archive, "w") as zf:
+        for p in sorted(folder.iterdir()):
+            zf.write(p, "UB10200_RBT01/" + p.name)
+    out = json.loads(run("frames", archive, "--json").stdout)
+    member = f"{archive}!UB10200_RBT01/SYSFRAME.VA"
+    uf1 = [f for f in out["frames"] if f["file"] == member and f["name"] == "UF1"][0]
+    assert uf1["label"] == "UB10200_FXT01"                  # FRAME.DG beside it in the archive
+    assert len(out["not_read"]) == 3 and out["errors"] == []
+    res = run("diff", archive, folder, "--exit-code")
+    assert res.returncode == 0 and "no difference" in res.stdout
