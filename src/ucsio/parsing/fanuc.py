@@ -228,17 +228,14 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
         pos = tok.start_pos
         if tok.type == "_NL":
             return doc.error(f"{what}: unexpected end of line{expected}", pos)
-        return doc.error(f"{what}: unexpected {_shown(text, pos, len(tok.value))}{expected}",
-                         pos)
+        return doc.error(f"{what}: unexpected {_shown(text, pos)}{expected}", pos)
     raise exc
 
 
-def _shown(text: str, pos: int, length: int = 1) -> str:
-    """What stands at ``pos``, quoted, one readable line at most 30 characters."""
-    end = text.find("\n", pos)
-    end = len(text) if end < 0 else end
-    s = text[pos:min(end, pos + max(length, 1))] if length > 1 else text[pos:end]
-    s = s.rstrip("\r")
+def _shown(text: str, pos: int) -> str:
+    """The rest of the line at ``pos``, quoted, at most 30 characters."""
+    end = text.find("\n", pos, pos + 40)
+    s = text[pos:end if end >= 0 else pos + 40].rstrip("\r")
     if not s:
         return "end of line"
     return repr(s if len(s) <= 30 else s[:30] + "...")
