@@ -94,6 +94,8 @@ def _same(a: Any, b: Any) -> bool:
 def frame_changes(old: Frame, new: Frame) -> list[str]:
     """Which aspects of a frame differ: 'value' (the pose), 'type',
     'reference', 'label', and info keys (robhold, ufprog, load, ...)."""
+    if _written_alike(old, new):
+        return []
     out = []
     if not poses_equal(old.pose, new.pose):
         out.append("value")
@@ -106,6 +108,16 @@ def frame_changes(old: Frame, new: Frame) -> list[str]:
         if not _same(old.info.get(k), new.info.get(k)):
             out.append(k)
     return out
+
+
+def _written_alike(old: Frame, new: Frame) -> bool:
+    """The same numbers written the same way, the same type, reference,
+    label and info: nothing can differ (a listing's hundreds of unset
+    frames are compared in a blink)."""
+    a, b = old.numbers, new.numbers
+    return (old.type == new.type and old.reference == new.reference
+            and old.label == new.label and a.keys() == b.keys()
+            and all(a[k].text == b[k].text for k in a) and old.info == new.info)
 
 
 def _index(frames: list[Frame]) -> dict[str, list[Frame]]:
