@@ -127,7 +127,8 @@ def expected(reference, levels=None):
 def test_json_is_todays_json_with_a_code_on_each_error(outputs, cell):
     code, out, _ = outputs["json"]
     doc = json.loads(out)
-    assert set(doc) == {"files", "errors", "ok"} and doc["ok"] is False
+    assert set(doc) == {"files", "errors", "not_read", "ok"} and doc["ok"] is False
+    assert doc["not_read"] == []           # a FANUC backup's binary files, listed
     assert {e["code"] for e in doc["errors"]} == {"syntax-error", "unreadable"}
     assert all({"file", "line", "col", "message", "code"} <= set(e) for e in doc["errors"])
     assert main(["check", *INPUTS, "--json"], cell) == outputs["json"]
@@ -420,6 +421,8 @@ CODES_EVER = [
     "duplicate-frame", "duplicate-label", "not-a-frame", "duplicate-component",
     "unknown-component", "not-a-number", "missing-component", "label-too-long", "label-quote",
     "base-not-world",
+    "not-a-frame-array", "group-mismatch", "out-of-range", "unread-frame-set", "label-source",
+    "after-end",
     "syntax-error", "unreadable", "round-trip",
 ]
 
