@@ -38,6 +38,14 @@ def edit(path, old: bytes, new: bytes):
     path.write_bytes(data.replace(old, new, 1))
 
 
+def old_and_new(tmp_path, source, suffix: str):
+    """Two copies of ``source`` to edit one of: (old, new)."""
+    old, new = tmp_path / f"old{suffix}", tmp_path / f"new{suffix}"
+    shutil.copy(source, old)
+    shutil.copy(source, new)
+    return old, new
+
+
 def ub_backup(folder):
     """The UB10200 robot's backup as the controller names its files, with
     the binary files every real backup has beside the ASCII ones."""
@@ -56,10 +64,7 @@ def ub_backup(folder):
 # -- two sysframe.va ---------------------------------------------------------------------
 @needs_corpus
 def test_two_sysframes_frames_changed_and_rotations_compared(tmp_path):
-    old = tmp_path / "old.va"
-    new = tmp_path / "new.va"
-    shutil.copy(corpus_file("fanuc", UB + "sysframe.va"), old)
-    shutil.copy(old, new)
+    old, new = old_and_new(tmp_path, corpus_file("fanuc", UB + "sysframe.va"), ".va")
     # UF1 moves 0.5 mm in X (the field width kept); UF2 gets a value;
     # UT31's W 180 becomes -180: the same rotation, no frame change
     edit(new, b"  X:  3495.600   Y:  5813.000", b"  X:  3496.100   Y:  5813.000")
@@ -94,9 +99,7 @@ def test_two_sysframes_frames_changed_and_rotations_compared(tmp_path):
 
 
 def test_w_180_against_minus_180_alone_is_no_frame_change(tmp_path):
-    old = FIXTURES / "fanuc" / "sysframe_comment.va"
-    new = tmp_path / "sysframe.va"
-    shutil.copy(old, new)
+    old, new = old_and_new(tmp_path, FIXTURES / "fanuc" / "sysframe_comment.va", ".va")
     edit(new, b"  W:   180.000   P:     0.000   R:   -90.000\r\n    [1,3]",
          b"  W:  -180.000   P:     0.000   R:   -90.000\r\n    [1,3]")
     d = json.loads(run("diff", old, new, "--json").stdout)
@@ -106,10 +109,7 @@ def test_w_180_against_minus_180_alone_is_no_frame_change(tmp_path):
 # -- two programs --------------------------------------------------------------------------
 @needs_corpus
 def test_two_programs(tmp_path):
-    old = tmp_path / "old.ls"
-    new = tmp_path / "new.ls"
-    shutil.copy(corpus_file("fanuc", UB + "tooldataub10200rbt01.ls"), old)
-    shutil.copy(old, new)
+    old, new = old_and_new(tmp_path, corpus_file("fanuc", UB + "tooldataub10200rbt01.ls"), ".ls")
     edit(new, b"PR[16,1]=3500    ;", b"PR[16,1]=3500.5    ;")
     edit(new, b"UFRAME[19:TIPDRESS]", b"UFRAME[19:TIP DRESS]")
     d = json.loads(run("diff", old, new, "--json").stdout)

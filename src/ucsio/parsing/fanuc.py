@@ -202,7 +202,20 @@ def _labels_of(src) -> dict:
     return labels
 
 
-# -- syntax errors: Lark's diagnosis, worded for people ------------------------------
+# -- the grammars' trees; syntax errors: Lark's diagnosis, worded for people -----------
+def tree(name: str, doc: Document, text: str, readable: dict, what: str,
+         lark_first: bool = False):
+    """The tree of ``text`` (the grammar's copy of ``doc``) from
+    grammars/NAME.lark's ``file``; where the grammar rejects it, one
+    UcsioError naming file:line:col (``syntax_error``). ``lark_first``: the
+    recogniser has rejected it already."""
+    from .grammar import SyntaxFailure, parse
+    try:
+        return parse(name, ("file",), text, "file", lark_first)
+    except SyntaxFailure as failure:
+        raise syntax_error(doc, text, failure.error, readable, what) from None
+
+
 def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what: str):
     """The UcsioError for Lark's exception ``exc`` on ``text`` (the grammar's
     copy of ``doc``): file:line:col and what was expected there."""

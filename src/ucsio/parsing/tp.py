@@ -83,12 +83,7 @@ _READABLE = {"_NL": "end of line", "PROG": "/PROG", "MN": "/MN", "POS": "/POS", 
 
 
 def _parse(doc: Document, text: str, lark_first: bool = False) -> Tree:
-    from .grammar import SyntaxFailure, parse
-    try:
-        return parse("tp", START, text, "file", lark_first)
-    except SyntaxFailure as failure:
-        raise fanuc.syntax_error(doc, text, failure.error, _READABLE,
-                                 "not a FANUC TP program") from None
+    return fanuc.tree("tp", doc, text, _READABLE, "not a FANUC TP program", lark_first)
 
 
 def _lines(doc: Document) -> str:

@@ -163,12 +163,7 @@ _READABLE = {"_NL": "end of line", "HEAD": "a record ([*SYSTEM*]$NAME ...)",
 
 
 def _parse(doc: Document, text: str, lark_first: bool = False) -> Tree:
-    from .grammar import SyntaxFailure, parse
-    try:
-        return parse("va", START, text, "file", lark_first)
-    except SyntaxFailure as failure:
-        raise fanuc.syntax_error(doc, text, failure.error, _READABLE,
-                                 "not a FANUC variable listing") from None
+    return fanuc.tree("va", doc, text, _READABLE, "not a FANUC variable listing", lark_first)
 
 
 def _lines(doc: Document) -> str:
