@@ -283,7 +283,7 @@ def _frame_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int):
     literal = _literal_index(index)
     number_text, label = _index(index)
     what = fanuc.frame_name(ftype, literal if literal is not None else number_text, group)
-    info = {"set_from": None}
+    info: dict = {}
     numbers = None
     values = None
     why = None
