@@ -105,6 +105,70 @@ class Number(Value):
         return self.lead + "".join(self.text.split())
 
 
+class ShiftedNumbers:
+    """A frame's numbers where its text repeats another element's (a
+    sysframe.va lists hundreds of identical default entries): the other's
+    Numbers moved ``delta`` characters on, made only when a span is asked
+    for. Listing a file never asks; a patch or a diff does. Reads as the
+    dict it stands for (equal to it, same keys and values); ``base`` holds
+    the values, which do not move."""
+
+    __slots__ = ("base", "delta", "_made")
+
+    def __init__(self, base: dict[str, Number], delta: int):
+        self.base, self.delta, self._made = base, delta, None
+
+    def _numbers(self) -> dict[str, Number]:
+        if self._made is None:
+            d = self.delta
+            self._made = {k: Number(Span(n.span.start + d, n.span.end + d), n.text, n.value)
+                          for k, n in self.base.items()}
+        return self._made
+
+    def __getitem__(self, key: str) -> Number:
+        return self._numbers()[key]
+
+    def __iter__(self):
+        return iter(self.base)
+
+    def __len__(self) -> int:
+        return len(self.base)
+
+    def __contains__(self, key) -> bool:
+        return key in self.base
+
+    def __bool__(self) -> bool:
+        return bool(self.base)
+
+    def keys(self):
+        return self.base.keys()
+
+    def values(self):
+        return self._numbers().values()
+
+    def items(self):
+        return self._numbers().items()
+
+    def get(self, key, default=None):
+        return self._numbers().get(key, default)
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, ShiftedNumbers):
+            other = other._numbers()
+        return self._numbers() == other
+
+    __hash__ = None         # type: ignore[assignment]  - a mapping, as the dict it stands for
+
+    def __repr__(self) -> str:
+        return repr(self._numbers())
+
+
+def number_values(numbers) -> list[float]:
+    """The values of a frame's numbers, without making moved spans."""
+    base = numbers.base if isinstance(numbers, ShiftedNumbers) else numbers
+    return [n.value for n in base.values()]
+
+
 class Frame(Value):
     __slots__ = ("name", "vendor", "type", "pose", "file", "line", "reference", "label",
                  "numbers", "info", "document")

@@ -38,7 +38,7 @@ from __future__ import annotations
 import re
 
 from ..errors import UcsioError
-from ..geometry.frames import Frame, Number
+from ..geometry.frames import Frame, Number, ShiftedNumbers
 from . import fanuc, regex
 from .controller import ControllerFile
 from .document import Document, Span, lf_lines, masked
@@ -359,12 +359,12 @@ def _index(text: str):
     return got
 
 
-def _moved(numbers: dict, delta: int) -> dict:
-    """``numbers`` (component -> Number) ``delta`` characters further on."""
+def _moved(numbers: dict, delta: int):
+    """``numbers`` (component -> Number) ``delta`` characters further on,
+    made only when a span is asked for (``ShiftedNumbers``)."""
     if not delta:
         return dict(numbers)
-    return {k: Number(Span(n.span.start + delta, n.span.end + delta), n.text, n.value)
-            for k, n in numbers.items()}
+    return ShiftedNumbers(numbers, delta)
 
 
 # -- frames ---------------------------------------------------------------------------

@@ -26,6 +26,8 @@ user's), and a frame without a value (that is the ``no-value`` lint's case).
 """
 from __future__ import annotations
 
+from ..geometry.frames import number_values
+
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
     from typing import Any
@@ -49,8 +51,8 @@ def is_set(frame, cf=None) -> bool:
             return True
     elif frame.type not in TABLES and not (frame.type == "FRAME" and configuration(cf)):
         return True
-    nums = frame.numbers
-    if len(nums) != 6 or any(n.value != 0 for n in nums.values()):
+    values = number_values(frame.numbers)
+    if len(values) != 6 or any(v != 0 for v in values):
         return True
     label = (frame.label or "").strip()
     return bool(label) and label.casefold() != frame.name.casefold()
