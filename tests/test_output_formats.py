@@ -127,7 +127,7 @@ def expected(reference, levels=None):
 def test_json_is_todays_json_with_a_code_on_each_error(outputs, cell):
     code, out, _ = outputs["json"]
     doc = json.loads(out)
-    assert set(doc) == {"files", "errors", "not_read", "ok"} and doc["ok"] is False
+    assert set(doc) == {"schema_version", "files", "errors", "not_read", "ok"} and doc["ok"] is False
     assert doc["not_read"] == []           # a FANUC backup's binary files, listed
     assert {e["code"] for e in doc["errors"]} == {"syntax-error", "unreadable"}
     assert all({"file", "line", "col", "message", "code"} <= set(e) for e in doc["errors"])
@@ -381,7 +381,8 @@ def test_one_unreadable_file_is_a_finding_too(cell, fmt):
 
 def test_one_unreadable_file_in_full_and_json_is_spec_s_single_error(cell):
     code, out, err = main(["check", "missing.mod", "--output-format", "json"], cell)
-    assert code == 2 and json.loads(out) == {"error": {"file": "missing.mod", "line": None,
+    assert code == 2 and json.loads(out) == {"schema_version": 1,
+                                             "error": {"file": "missing.mod", "line": None,
                                                        "col": None, "message": "no such file (the controller file)"}}
     code, out, err = main(["check", "missing.mod"], cell)
     assert code == 2 and out == "" and err.count("\n") == 1

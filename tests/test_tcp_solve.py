@@ -366,8 +366,9 @@ def test_api_solve_with_tcp_solve(tmp_path):
 
     meas, _, _ = cell(4, 30)
     sol = api.solve(csv_of(meas, tmp_path / "m.csv"), tcp="solve")
-    assert sol.accepted and sol.tcp_solved["solved"] is True
-    assert np.linalg.norm(np.array(sol.tcp) - TCP) < 0.5
+    assert sol.accepted and sol.tcp.solved is True          # solve --json's tcp object
+    assert np.linalg.norm(np.array([sol.tcp.x, sol.tcp.y, sol.tcp.z]) - TCP) < 0.5
+    assert sol.solution.tcp_solved["solved"] is True        # the solver's own object
 
 
 def test_a_wrong_tcp_is_not_told_to_measure_again(tmp_path, capsys):

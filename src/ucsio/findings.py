@@ -33,7 +33,7 @@ from .values import Value
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import TextIO
+    from typing import Iterable, TextIO
 
 #: Every value of ``check --output-format``, ruff's names; ``full`` is the default.
 FORMATS = ("full", "concise", "json", "json-lines", "github", "gitlab", "sarif")
@@ -80,7 +80,7 @@ ROUND_TRIP_MESSAGE = ("round trip failed: the bytes ucsio would write for the un
                       "not the file's, or a frame number's span does not hold that number")
 
 
-def collect(results: list[dict], errors: list) -> list[Finding]:
+def collect(results: Iterable[dict], errors: Iterable) -> list[Finding]:
     """``check_parsed`` results and the files not read -> findings, file by
     file in check's order (the files read, then the rest)."""
     out = []
@@ -164,10 +164,16 @@ def _concise(findings, stream) -> None:
         stream.write(concise_line(f, stream) + "\n")
 
 
+def json_lines(findings: list[Finding]) -> list[dict]:
+    """The objects ``json-lines`` prints, one a finding: ``as_dict`` and its
+    ``fingerprint`` (``api.check(...).findings`` too)."""
+    return [{**f.as_dict(), "fingerprint": fp} for f, fp in zip(findings, fingerprints(findings))]
+
+
 def _json_lines(findings, stream) -> None:
     import json
-    for f, fp in zip(findings, fingerprints(findings)):
-        stream.write(json.dumps({**f.as_dict(), "fingerprint": fp}, ensure_ascii=False) + "\n")
+    for line in json_lines(findings):
+        stream.write(json.dumps(line, ensure_ascii=False) + "\n")
 
 
 def github_escape_data(text: str) -> str:
@@ -202,7 +208,7 @@ def _gitlab(findings, stream) -> None:
                        "fingerprint": fp, "severity": levels[f.severity],
                        "location": {"path": relative_path(f.file),
                                     "positions": {"begin": at, "end": at}}})
-    emit_json(report, stream)
+    emit_json(report, stream, document=False)
 
 
 def code_severity(code: str) -> str:
@@ -262,7 +268,7 @@ def sarif_log(findings: list[Finding]) -> dict:
 
 def _sarif(findings, stream) -> None:
     from .output import emit_json
-    emit_json(sarif_log(findings), stream)
+    emit_json(sarif_log(findings), stream, document=False)
 
 
 _RENDERERS = {"concise": _concise, "json-lines": _json_lines, "github": _github,

@@ -10,6 +10,21 @@ if TYPE_CHECKING:
     from typing import Any, Iterable, Sequence
 
 
+#: The version of the JSON every command prints with --json and of the
+#: SOLUTION.json ``solve -o`` writes: one integer, the same in every
+#: document, raised only when a key scripts rely on changes its meaning or
+#: goes away (new keys do not raise it). docs/json.md; docs/schema/.
+SCHEMA_VERSION = 1
+
+
+def versioned(doc: dict[str, Any]) -> dict[str, Any]:
+    """``doc`` with ``schema_version`` first (a copy; a document that has it
+    is returned as it is)."""
+    if "schema_version" in doc:
+        return doc
+    return {"schema_version": SCHEMA_VERSION, **doc}
+
+
 def _clean(obj: Any) -> Any:
     # JSON has no NaN/inf; a number a script cannot read is worse than null.
     if isinstance(obj, float):
@@ -29,12 +44,16 @@ def _plain(obj: Any) -> Any:
     raise TypeError(f"{type(obj).__name__} is not JSON serializable")
 
 
-def emit_json(obj: Any, stream=None) -> None:
+def emit_json(obj: Any, stream=None, *, document: bool = True) -> None:
     """``obj`` as JSON: indented on a terminal, where a person reads it;
     otherwise one line from json's C encoder, in one pass (indenting forces
-    the pure-Python encoder: seconds for a 10,000-entry batch)."""
+    the pure-Python encoder: seconds for a 10,000-entry batch). A
+    ``document`` (a command's --json output) gets ``schema_version``; a
+    format defined elsewhere (SARIF, GitLab's) is printed as it is."""
     import json         # a table on a terminal needs none of it
 
+    if document and isinstance(obj, dict):
+        obj = versioned(obj)
     stream = stream or sys.stdout
     isatty = getattr(stream, "isatty", None)
     indent = 2 if isatty is not None and isatty() else None

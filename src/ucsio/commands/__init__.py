@@ -36,3 +36,13 @@ def report_failures(errors, what: str = "file") -> None:
         n = len(errors)
         print(f"ucsio: {n} {what}{'s' if n != 1 else ''} could not be read (exit 2)",
               file=sys.stderr)
+
+
+def options_for(fn, args) -> dict:
+    """The parsed options ``fn`` takes, by name: a command's work is a
+    function with one keyword per option (its ``dest``), which ``run`` and
+    ``ucsio.api`` both call, so the two cannot drift apart. (Read from the
+    code object: ``inspect`` is a slow import.)"""
+    code = fn.__code__
+    names = code.co_varnames[:code.co_argcount + code.co_kwonlyargcount]
+    return {n: getattr(args, n) for n in names if hasattr(args, n)}

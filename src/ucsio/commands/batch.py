@@ -11,6 +11,7 @@ import os
 import sys
 
 from . import add_uncertainty_options
+from .. import defaults
 from ..errors import UcsioError
 
 
@@ -60,9 +61,17 @@ def _check_output(path: str | None, option: str) -> None:
         raise UcsioError(f"{option} {path}: folder {folder} does not exist")
 
 
-def run(args) -> int:
-    """The command, with the cyclic garbage collector paused: a batch keeps
-    every parsed file and solution until its output, and the collector's full
+def batch(manifest, *, uncertainty: int = 0, sigma_laser: float = defaults.SIGMA_LASER,
+          sigma_robot: float = defaults.SIGMA_ROBOT, seed: int = 0, patch_dir=None, csv=None,
+          report=None, progress=None):
+    """The command's work, for ``run`` and ``ucsio.api.batch`` alike: read
+    the manifest, solve and diff every entry, write the patched copies
+    (``patch_dir``), the CSV and the HTML report where asked; returns
+    ``fleet.batch.BatchResult`` (``as_dict()`` is --json's document).
+    ``progress(stage, done, total)`` is called as the entries go.
+
+    The cyclic garbage collector is paused meanwhile: a batch keeps every
+    parsed file and solution until its output, and the collector's full
     passes over them grow with the fleet (a quarter of the run at 4,000
     entries, and the cause of the time per entry rising with the entries)
     while reclaiming nothing. Reference counting still frees everything else."""
@@ -71,45 +80,55 @@ def run(args) -> int:
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _run(args)
+        return _batch(manifest, uncertainty, sigma_laser, sigma_robot, seed, patch_dir, csv,
+                      report, progress)
     finally:
         if enabled:
             gc.enable()
 
 
-def _run(args) -> int:
+def _batch(manifest, uncertainty, sigma_laser, sigma_robot, seed, patch_dir, csv, report,
+           progress):
     from ..fleet.batch import read_manifest, run_batch, write_csv
-    from ..output import emit_json
     from ..method.solve import check_sigmas
 
-    if args.uncertainty and args.uncertainty < 2:
+    if uncertainty and uncertainty < 2:
         raise UcsioError("--uncertainty needs N >= 2 samples")
-    check_sigmas(args.sigma_laser, args.sigma_robot)  # before anything runs: fail at once
-    _check_output(args.csv, "--csv")
-    _check_output(args.report, "--report")
-    manifest = read_manifest(args.manifest)
-    if args.patch_dir is not None:
-        pd = os.path.abspath(args.patch_dir)
+    check_sigmas(sigma_laser, sigma_robot)  # before anything runs: fail at once
+    csv = None if csv is None else os.fspath(csv)
+    report = None if report is None else os.fspath(report)
+    patch_dir = None if patch_dir is None else os.fspath(patch_dir)
+    _check_output(csv, "--csv")
+    _check_output(report, "--report")
+    manifest = read_manifest(manifest)
+    if patch_dir is not None:
+        pd = os.path.abspath(patch_dir)
         for e in manifest.entries:
             for original in (e.controller, e.tcp_tool and e.tcp_tool.rpartition(":")[0]):
                 if original and os.path.dirname(os.path.abspath(original)) == pd:
-                    raise UcsioError(f"--patch-dir {args.patch_dir} holds the original "
+                    raise UcsioError(f"--patch-dir {patch_dir} holds the original "
                                      f"controller file {original}; choose another folder")
+    result = run_batch(manifest, uncertainty=uncertainty, sigma_laser=sigma_laser,
+                       sigma_robot=sigma_robot, seed=seed, patch_dir=patch_dir,
+                       progress=progress)
+    if csv:
+        write_csv(result.entries, csv)  # atomic; errors: one UcsioError
+    if report:
+        from ..fleet.report import write_report
+        write_report(result, report, csv=csv)
+    return result
+
+
+def run(args) -> int:
+    from . import options_for
+    from ..output import emit_json
 
     bar = _Bar(sys.stderr) if (sys.stderr.isatty() and not args.no_progress) else None
     try:
-        result = run_batch(manifest, uncertainty=args.uncertainty, sigma_laser=args.sigma_laser,
-                           sigma_robot=args.sigma_robot, seed=args.seed,
-                           patch_dir=args.patch_dir, progress=bar)
+        result = batch(**options_for(batch, args), progress=bar)
     finally:
         if bar is not None:
             bar.close()
-
-    if args.csv:
-        write_csv(result.entries, args.csv)  # atomic; errors: one UcsioError
-    if args.report:
-        from ..fleet.report import write_report
-        write_report(result, args.report, csv=args.csv)
 
     if args.json:
         emit_json(result.as_dict())

@@ -97,29 +97,42 @@ def output_format(args) -> str:
     return "json" if args.json else fmt or "full"
 
 
-def run(args) -> int:
-    from ..output import paint
-    from . import load_inputs, report_failures
-
-    fmt = output_format(args)
-    ignore = ignored_codes(args.ignore)
+def check_files(files: list, ignore: frozenset = frozenset(), fmt: str = "json"):
+    """(results, errors, not_read, exit status): each file read checked
+    (``check_parsed``), the files that could not be read, and those listed as
+    not read (a FANUC backup's binary files). With ``fmt`` full or json one
+    plain file that cannot be read is raised (SPEC's single error); the
+    formats CI reads list it as a finding, like any file not read."""
+    from . import load_inputs
     if fmt in ("full", "json"):
-        # one plain file that cannot be read is SPEC's single error, as ever
-        parsed, errors, not_read = load_inputs(args.files, full=True)
+        parsed, errors, not_read = load_inputs(files, full=True)
     else:
-        # the formats CI reads list it as a finding, like any file not read
         from ..parsing.backup import load_all
-        parsed, errors, not_read = load_all(args.files, full=True)
+        parsed, errors, not_read = load_all(files, full=True)
     results = [check_parsed(cf, ignore) for _, cf in parsed]
     bad = any(not r["round_trip"] or any(l["severity"] != "info" for l in r["lints"])
               for r in results)
-    status = 2 if errors else 1 if bad else 0
+    return results, errors, not_read, 2 if errors else 1 if bad else 0
+
+
+def document(results: list, errors: list, not_read: list, status: int) -> dict:
+    """--json's document (``api.check`` too)."""
+    from ..findings import error_code
+    return {"files": results,
+            "errors": [{**e.as_dict(), "code": error_code(e)} for e in errors],
+            "not_read": [{"file": s.name, "reason": s.reason} for s in not_read],
+            "ok": status == 0}
+
+
+def run(args) -> int:
+    from ..output import paint
+    from . import report_failures
+
+    fmt = output_format(args)
+    ignore = ignored_codes(args.ignore)
+    results, errors, not_read, status = check_files(args.files, ignore, fmt)
     if fmt == "json":
-        from ..findings import error_code
-        emit_json({"files": results,
-                   "errors": [{**e.as_dict(), "code": error_code(e)} for e in errors],
-                   "not_read": [{"file": s.name, "reason": s.reason} for s in not_read],
-                   "ok": status == 0})
+        emit_json(document(results, errors, not_read, status))
         report_failures(errors)
         return status
     if fmt != "full":

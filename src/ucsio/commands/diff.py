@@ -77,17 +77,7 @@ def run(args) -> int:
     if len(files) != 2:
         raise UsageError("ucsio diff: expected OLD NEW, FILE --frame NAME --measured "
                          "SOLUTION.json, or --textconv FILE (see ucsio diff --help)")
-    from ..parsing.backup import is_many, is_member
-    for f in files:     # a wrong path first: it says more than "both files or both backups"
-        if not os.path.lexists(f) and not is_member(f):
-            from ..errors import UcsioError
-            raise UcsioError("does not exist (no such file or folder)", file=f)
-    many = [is_many(f) for f in files]
-    if any(many):
-        if not all(many):
-            backup, single = (files[0], files[1]) if many[0] else (files[1], files[0])
-            raise UsageError(f"ucsio diff: {backup} is a backup (a folder or .zip archive) and "
-                             f"{single} a single file: give two files or two backups")
+    if both_backups(*files):
         return _backups(args)
     from ..parsing.backup import load_one
     from ..output import paint_diff
@@ -103,12 +93,41 @@ def run(args) -> int:
     return 0
 
 
+def both_backups(old, new) -> bool:
+    """Whether OLD and NEW are two backups (True) or two files (False); a
+    path that does not exist, or a backup against a single file, is an error."""
+    from ..errors import UsageError
+    from ..parsing.backup import is_many, is_member
+    files = [os.fspath(old), os.fspath(new)]
+    for f in files:     # a wrong path first: it says more than "both files or both backups"
+        if not os.path.lexists(f) and not is_member(f):
+            from ..errors import UcsioError
+            raise UcsioError("does not exist (no such file or folder)", file=f)
+    many = [is_many(f) for f in files]
+    if any(many) and not all(many):
+        backup, single = (files[0], files[1]) if many[0] else (files[1], files[0])
+        raise UsageError(f"ucsio diff: {backup} is a backup (a folder or .zip archive) and "
+                         f"{single} a single file: give two files or two backups")
+    return all(many)
+
+
+def backups(old, new) -> dict:
+    """Two backups compared (``review.backup_diff``), checked as the command
+    checks them; ``as_json`` of it is --json's document."""
+    from ..errors import UsageError
+    from ..review.backup_diff import diff_backups
+    if not both_backups(old, new):
+        raise UsageError(f"ucsio diff: {os.fspath(old)} and {os.fspath(new)} are single files, "
+                         "not backups (folders or .zip archives)")
+    return diff_backups(os.fspath(old), os.fspath(new))
+
+
 def _backups(args) -> int:
-    from ..review.backup_diff import as_json, diff_backups, differs, format_backup_diff
+    from ..review.backup_diff import as_json, differs, format_backup_diff
     from ..output import paint_diff
     from . import report_failures
 
-    result = diff_backups(*args.files)
+    result = backups(*args.files)
     if args.json:
         emit_json(as_json(result))
     else:
@@ -130,27 +149,52 @@ def _git(args) -> int:
     return 0
 
 
+def tolerance_of(tolerance) -> float:
+    """--tolerance, checked; None is the default (100 mm)."""
+    from ..review.diff import DEFAULT_TOLERANCE
+    tol = DEFAULT_TOLERANCE if tolerance is None else tolerance
+    if not tol > 0:
+        from ..errors import UcsioError
+        raise UcsioError(f"--tolerance must be positive, got {tolerance}")
+    return tol
+
+
+def one_frame(cf, frame: str, measured, solution=None, *, tolerance=None,
+              oframe: bool = False, points: bool = False) -> dict:
+    """``diff FILE --frame NAME --measured SOLUTION.json``'s document (for
+    ``run`` and ``ucsio.api.diff_frame``): ``measured`` the solution's Pose,
+    ``solution`` its JSON data where there is one (with ``points``, its
+    covariance gives each taught point's ``at_95``)."""
+    from ..review.compare import diff_frame
+
+    tol = tolerance_of(tolerance)
+    d = diff_frame(cf, frame, measured, tol, oframe=oframe)
+    if points:
+        d.update(taught_points(cf, frame, measured, solution, oframe=oframe))
+    return d
+
+
+def taught_points(cf, frame: str, measured, solution=None, *, oframe: bool = False) -> dict:
+    """--points' keys: ``points``, ``points_moved``, ``points_warnings``, and
+    from a solution with its covariance ``working_points`` and ``worst``."""
+    from ..review.patch import resolve_name
+    from ..taught import points_moved
+    data = solution if isinstance(solution, dict) else None
+    return points_moved(cf, cf.frame(resolve_name(frame, oframe)), measured, solution=data)
+
+
 def _one_frame(args) -> int:
     from ..method.solution import pose_from_json, read_json
     from ..parsing.backup import load_one as load
-    from ..review.diff import DEFAULT_TOLERANCE
-    from ..review.compare import diff_frame
 
-    tol = DEFAULT_TOLERANCE if args.tolerance is None else args.tolerance
-    if not tol > 0:
-        from ..errors import UcsioError
-        raise UcsioError(f"--tolerance must be positive, got {args.tolerance}")
+    tol = tolerance_of(args.tolerance)
     data = read_json(args.measured)
     measured = pose_from_json(data, args.measured)
     cf = load(args.files[0])
-    d = diff_frame(cf, args.frame, measured, tol, oframe=args.oframe)
-    if args.points:
-        from ..review.patch import resolve_name
-        from ..taught import points_moved
-        d.update(points_moved(cf, cf.frame(resolve_name(args.frame, args.oframe)), measured,
-                              solution=data))
-        for w in d["points_warnings"]:
-            print(f"ucsio: warning: {w}", file=sys.stderr)
+    d = one_frame(cf, args.frame, measured, data, tolerance=tol, oframe=args.oframe,
+                  points=args.points)
+    for w in d.get("points_warnings", ()):
+        print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.json:
         emit_json(d)
         return 0 if d["pass"] else 1

@@ -29,17 +29,25 @@ def add_arguments(p) -> None:
                         "name)")
 
 
+def document(parsed, errors, not_read=()) -> dict:
+    """--json's document (``api.frames`` too): every frame of the files read,
+    the files, the files that could not be read, and those not read (a
+    FANUC backup's binary files)."""
+    from ..review.unset import as_dict
+    return {"frames": [as_dict(f, c) for _, c in parsed for f in c.frames],
+            "files": [c.path for _, c in parsed],      # every file read, frames or not
+            "errors": [e.as_dict() for e in errors],
+            "not_read": [{"file": s.name, "reason": s.reason} for s in not_read]}
+
+
 def run(args) -> int:
     from . import load_inputs, report_failures
-    from ..review.unset import as_dict, is_set
+    from ..review.unset import is_set
 
     parsed, errors, not_read = load_inputs(args.files)
     status = 2 if errors else 0
     if args.json:
-        emit_json({"frames": [as_dict(f, c) for _, c in parsed for f in c.frames],
-                   "files": [c.path for _, c in parsed],      # every file read, frames or not
-                   "errors": [e.as_dict() for e in errors],
-                   "not_read": [{"file": s.name, "reason": s.reason} for s in not_read]})
+        emit_json(document(parsed, errors, not_read))
         report_failures(errors)
         return status
     frames = [f for _, c in parsed for f in c.frames if args.all or is_set(f, c)]

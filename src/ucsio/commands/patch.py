@@ -88,8 +88,8 @@ def target_pose(args):
     return Pose.from_quat(x, y, z, q), False
 
 
-def solved_tcp_for(cf, args):
-    """The solved TCP to write when --frame names a robot-held tool (SPEC:
+def solved_tcp_for(cf, name: str, oframe: bool, solution, path=None, force: bool = False):
+    """The solved TCP to write when ``name`` is a robot-held tool (SPEC:
     patch on a tool writes the solved TCP's x, y, z and nothing else of it);
     None for every other frame, and where the solution's TCP was given, not
     solved (patch_frame then refuses a world frame for a tool, as before)."""
@@ -97,17 +97,37 @@ def solved_tcp_for(cf, args):
     from ..review.patch import resolve_name, robot_held_tool
     from ..method.solution import solved_tcp
 
-    frame = find_frame(cf, resolve_name(args.frame, args.oframe))
+    frame = find_frame(cf, resolve_name(name, oframe))
     if not robot_held_tool(frame):
         return None
-    return solved_tcp(args.solution_data, args.measured, allow_rejected=args.force)
+    return solved_tcp(solution, path, allow_rejected=force)
+
+
+def plan_patch(cf, frame: str, pose, *, measured: bool = True, solution=None, path=None,
+               force: bool = False, oframe: bool = False, check_siblings: bool = True):
+    """The patch to write (``review.patch.PatchResult``; nothing written), for
+    ``run`` and ``ucsio.api.patch``: ``pose`` into ``frame``, or, for a
+    robot-held tool and a measured ``solution`` (its JSON data) whose TCP was
+    solved, that TCP's x, y, z."""
+    from ..review.patch import patch_frame, patch_tcp
+    tcp = solved_tcp_for(cf, frame, oframe, solution, path, force) \
+        if measured and solution is not None else None
+    if tcp is not None:
+        return patch_tcp(cf, frame, tcp, force=force, check_siblings=check_siblings)
+    return patch_frame(cf, frame, pose, measured=measured, force=force, oframe=oframe,
+                       check_siblings=check_siblings)
+
+
+def document(result) -> dict:
+    """--json's document (``ucsio.api.patch`` too)."""
+    return {"patch": result.as_dict()}
 
 
 def run(args) -> int:
     from ..parsing.controller import load
     from ..errors import UsageError
     from ..output import paint_diff
-    from ..review.patch import patch_frame, save
+    from ..review.patch import save
 
     if args.backup and not args.in_place:
         raise UsageError("ucsio patch: --backup goes with --in-place")
@@ -118,13 +138,9 @@ def run(args) -> int:
     refuse_member(args.file)
     pose, measured = target_pose(args)
     cf = load(args.file)
-    tcp = solved_tcp_for(cf, args) if measured else None
-    if tcp is not None:
-        from ..review.patch import patch_tcp
-        result = patch_tcp(cf, args.frame, tcp, force=args.force)
-    else:
-        result = patch_frame(cf, args.frame, pose, measured=measured, force=args.force,
-                             oframe=args.oframe)
+    result = plan_patch(cf, args.frame, pose, measured=measured,
+                        solution=getattr(args, "solution_data", None), path=args.measured,
+                        force=args.force, oframe=args.oframe)
     if args.output == "-":         # the patched file is the data on stdout
         for w in result.warnings:
             print(f"ucsio: warning: {w}", file=sys.stderr)
@@ -139,7 +155,7 @@ def run(args) -> int:
     for w in result.warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.json:
-        emit_json({"patch": result.as_dict()})
+        emit_json(document(result))
         return 0
     if not result.changed:
         print(f"{result.path}: {result.frame.name} already has these values "

@@ -17,6 +17,7 @@ predicted within the threshold, 1 when not, 2 bad input."""
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from .. import defaults
@@ -73,7 +74,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help=f"robot noise per axis, mm (default {defaults.SIGMA_ROBOT})")
 
 
-def read_plan(args, joint: bool):
+def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
+              robot_tool: str = "tool0", robot_wobj: str = "wobj0"):
     """(method.plan.Planned, warnings) from PLAN.csv and --robot."""
     import numpy as np
 
@@ -81,49 +83,54 @@ def read_plan(args, joint: bool):
     from ..method.plan import Planned
     from ..readers.text import content_lines, decode
 
-    text = decode(read_bytes(args.plan, "plan file"))
+    plan = os.fspath(plan)
+    text = decode(read_bytes(plan, "plan file"))
     has_robot = any("robot_x" in line.lower() for _, line in content_lines(text)[:2])
     warnings: list[str] = []
-    if has_robot and args.robot is not None:
+    if has_robot and robot is not None:
         raise UcsioError("the plan has robot_* columns and --robot is given: plan the flange "
-                         "poses once", file=args.plan)
-    for opt, given in (("--config", args.config), ("--map", args.map)):
-        if given is not None and args.robot is None:
+                         "poses once", file=plan)
+    for opt, given in (("--config", config), ("--map", map)):
+        if given is not None and robot is None:
             raise UcsioError(f"{opt} goes with --robot")
     if has_robot:
         from ..method.measurement import parse_measurement
-        m = parse_measurement(text, args.plan)
-        return Planned(args.plan, m.names, m.lines, m.laser, m.weights, m.flange), warnings
+        m = parse_measurement(text, plan)
+        return Planned(plan, m.names, m.lines, m.laser, m.weights, m.flange), warnings
     from ..readers import laser
-    lp = laser.read_laser(args.plan)
-    if args.robot is None:
-        return Planned(args.plan, lp.names, lp.lines, lp.xyz, lp.weights), list(lp.warnings)
+    lp = laser.read_laser(plan)
+    if robot is None:
+        return Planned(plan, lp.names, lp.lines, lp.xyz, lp.weights), list(lp.warnings)
     if not joint:
         warnings.append("--robot: the planned flange poses matter only with --tcp solve (a "
                         "known TCP's frame error does not depend on them); not read")
-        return Planned(args.plan, lp.names, lp.lines, lp.xyz, lp.weights), warnings
-    from ..readers import pairing, robot
-    rp = robot.read_robot(args.robot, config=args.config, tool=args.robot_tool,
-                          wobj=args.robot_wobj)
-    mapping = pairing.read_map(args.map) if args.map else ()
-    m, more = pairing.pair(lp, rp, mapping, args.map)
-    return (Planned(args.plan, m.names, m.lines, m.laser, m.weights,
+        return Planned(plan, lp.names, lp.lines, lp.xyz, lp.weights), warnings
+    from ..readers import pairing, robot as robots
+    rp = robots.read_robot(robot, config=config, tool=robot_tool, wobj=robot_wobj)
+    mapping = pairing.read_map(map) if map else ()
+    m, more = pairing.pair(lp, rp, mapping, map)
+    return (Planned(plan, m.names, m.lines, m.laser, m.weights,
                     np.asarray(m.flange, dtype=float)), warnings + more)
 
 
-def working_points(args):
-    """(readers.points.Points or None, warnings): --at, or --at-taught."""
-    if args.at_taught is None:
-        if args.frame is not None:
+def working_points(at=None, at_taught=None, frame=None):
+    """(readers.points.Points or None, warnings): --at (a file, or Points from
+    Python), or --at-taught CONTROLLER with --frame."""
+    if at is not None and at_taught is not None:
+        raise UcsioError("give --at or --at-taught, not both")
+    if at_taught is None:
+        if frame is not None:
             raise UcsioError("--frame goes with --at-taught CONTROLLER")
-        if args.at is None:
+        if at is None:
             return None, []
-        from ..readers.points import read_points
-        return read_points(args.at), []
-    if args.frame is None:
+        if isinstance(at, (str, os.PathLike)):
+            from ..readers.points import read_points
+            return read_points(at), []
+        return at, []
+    if frame is None:
         raise UcsioError("--at-taught CONTROLLER needs --frame NAME: the frame the positions "
                          "are taught in")
-    return taught_points(args.at_taught, args.frame)
+    return taught_points(os.fspath(at_taught), frame)
 
 
 def taught_points(controller: str, name: str):
@@ -149,40 +156,53 @@ def taught_points(controller: str, name: str):
                    files=[p.file for p in pts]), list(found.warnings))
 
 
-def run(args) -> int:
+def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str = "tool0",
+                     robot_wobj: str = "wobj0", tcp=None, tool=None, at=None, at_taught=None,
+                     frame=None, candidates=None, threshold: float = defaults.THRESHOLD,
+                     reach: float = defaults.REACH, min_points: int = defaults.MIN_POINTS,
+                     sigma_laser: float = defaults.SIGMA_LASER,
+                     sigma_robot: float = defaults.SIGMA_ROBOT) -> dict:
+    """The command's work, for ``run`` and ``ucsio.api.plan`` alike: --json's
+    document. Each keyword is the option of that name; ``tcp`` may also be
+    three numbers, ``at`` and ``candidates`` ``readers.points.Points``."""
     import math
 
     from ..method import solve as solver
-    from ..method.plan import plan
-    from ..output import emit_json
+    from ..method.plan import plan as plan_points
 
-    solver.check_sigmas(args.sigma_laser, args.sigma_robot)
-    for opt, v in (("--threshold", args.threshold), ("--reach", args.reach)):
+    solver.check_sigmas(sigma_laser, sigma_robot)
+    for opt, v in (("--threshold", threshold), ("--reach", reach)):
         if not (math.isfinite(v) and v > 0):
             raise UcsioError(f"{opt} {v}: expected a positive number of mm")
-    if args.min_points < 3:
-        raise UcsioError(f"--min-points must be at least 3, got {args.min_points}")
-    joint = args.tcp is not None and args.tcp.strip().casefold() == "solve"
-    if args.tool:
-        from .solve import tool_tcp
-        tool_tcp(args.tool)                 # checked; a known TCP's value changes nothing
-    elif args.tcp is not None and not joint:
-        from .solve import parse_tcp
-        parse_tcp(args.tcp)
-    planned, warnings = read_plan(args, joint)
-    at, more = working_points(args)
+    if min_points < 3:
+        raise UcsioError(f"--min-points must be at least 3, got {min_points}")
+    joint = isinstance(tcp, str) and tcp.strip().casefold() == "solve"
+    if tool is not None or tcp is not None:
+        from .solve import resolve_tcp
+        resolve_tcp(tcp, tool)          # checked; a known TCP's value changes nothing
+    planned, warnings = read_plan(plan, joint, robot=robot, config=config, map=map,
+                                  robot_tool=robot_tool, robot_wobj=robot_wobj)
+    points, more = working_points(at, at_taught, frame)
     warnings += more
-    candidates = None
-    if args.candidates is not None:
+    if isinstance(candidates, (str, os.PathLike)):
         from ..readers.points import read_points
-        candidates = read_points(args.candidates, "candidate file")
-    result = plan(planned, joint=joint, at=at, candidates=candidates,
-                  threshold=args.threshold, reach=args.reach, sigma_laser=args.sigma_laser,
-                  sigma_robot=args.sigma_robot, min_points=args.min_points)
+        candidates = read_points(candidates, "candidate file")
+    result = plan_points(planned, joint=joint, at=points, candidates=candidates,
+                         threshold=threshold, reach=reach, sigma_laser=sigma_laser,
+                         sigma_robot=sigma_robot, min_points=min_points)
     result["warnings"] = warnings + result["warnings"]
-    result["source"] = args.plan
-    if at is not None:
-        result["at"] = args.at or f"{args.at_taught}:{args.frame}"
+    result["source"] = os.fspath(plan)
+    if points is not None:
+        result["at"] = (f"{os.fspath(at_taught)}:{frame}" if at_taught is not None else
+                        os.fspath(at) if isinstance(at, (str, os.PathLike)) else points.path)
+    return result
+
+
+def run(args) -> int:
+    from . import options_for
+    from ..output import emit_json
+
+    result = plan_measurement(**options_for(plan_measurement, args))
     for w in result["warnings"]:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.json:

@@ -83,42 +83,69 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
                    help="CSV of laser,robot name pairs for points whose names differ")
 
 
-def read_inputs(args):
+def read_inputs(measurement=None, laser=None, robot=None, *, laser_units: str = "mm",
+                config=None, robot_tool: str = "tool0", robot_wobj: str = "wobj0", map=None):
     """(Measurement, warnings) from MEAS.csv or from --laser and --robot."""
-    both = args.laser is not None and args.robot is not None
-    if args.measurement is not None and (args.laser is not None or args.robot is not None):
+    both = laser is not None and robot is not None
+    if measurement is not None and (laser is not None or robot is not None):
         raise UcsioError("give MEAS.csv or --laser and --robot, not both")
-    if args.measurement is None:
+    if measurement is None:
         if not both:
-            missing = "--robot" if args.laser is not None else (
-                "--laser" if args.robot is not None else "MEAS.csv (or --laser and --robot)")
+            missing = "--robot" if laser is not None else (
+                "--laser" if robot is not None else "MEAS.csv (or --laser and --robot)")
             raise UcsioError(f"solve needs {missing}")
-        from ..readers import laser, pairing, robot
-        lp = laser.read_laser(args.laser, args.laser_units)
-        rp = robot.read_robot(args.robot, config=args.config, tool=args.robot_tool,
-                              wobj=args.robot_wobj)
-        mapping = pairing.read_map(args.map) if args.map else ()
-        return pairing.pair(lp, rp, mapping, args.map)
-    for opt, given in (("--map", args.map), ("--config", args.config)):
+        from ..readers import laser as lasers, pairing, robot as robots
+        lp = lasers.read_laser(laser, laser_units)
+        rp = robots.read_robot(robot, config=config, tool=robot_tool, wobj=robot_wobj)
+        mapping = pairing.read_map(map) if map else ()
+        return pairing.pair(lp, rp, mapping, map)
+    for opt, given in (("--map", map), ("--config", config)):
         if given is not None:
             raise UcsioError(f"{opt} goes with --laser and --robot")
     from ..method.measurement import read_measurement
-    return read_measurement(args.measurement), []
+    return read_measurement(measurement), []
 
 
 def parse_tcp(text: str) -> tuple[float, float, float]:
-    import math
     parts = [s.strip() for s in text.replace(";", ",").split(",")]
     try:
         vals = tuple(float(s) for s in parts)
     except ValueError:
         raise UcsioError(f"--tcp {text!r}: expected three numbers X,Y,Z (mm)") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise UcsioError(f"--tcp {text!r}: expected three finite numbers X,Y,Z (mm)")
+    return check_tcp(vals, repr(text))
+
+
+def check_tcp(vals, shown: str) -> tuple[float, float, float]:
+    """Three finite numbers (mm) within the magnitude any value may have."""
+    import math
     from ..defaults import MAX_MAGNITUDE
+    try:
+        vals = tuple(float(v) for v in vals)
+    except (TypeError, ValueError):
+        raise UcsioError(f"--tcp {shown}: expected three numbers X,Y,Z (mm)") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise UcsioError(f"--tcp {shown}: expected three finite numbers X,Y,Z (mm)")
     if any(abs(v) > MAX_MAGNITUDE for v in vals):
-        raise UcsioError(f"--tcp {text!r}: at most {MAX_MAGNITUDE:.0e} mm in magnitude")
+        raise UcsioError(f"--tcp {shown}: at most {MAX_MAGNITUDE:.0e} mm in magnitude")
     return vals  # type: ignore[return-value]
+
+
+def resolve_tcp(tcp, tool) -> tuple[tuple[float, float, float] | None, bool]:
+    """(the TCP, whether it is solved with the frame) from ``--tcp`` (text
+    X,Y,Z or ``solve``; from Python also three numbers) or ``--tool
+    FILE:NAME``; neither is an error that names the three options."""
+    if tool is not None and tcp is not None:
+        raise UcsioError("give --tcp or --tool, not both")
+    if tool is not None:
+        return tool_tcp(tool), False
+    if isinstance(tcp, str):
+        if tcp.strip().casefold() == "solve":
+            return None, True
+        return parse_tcp(tcp), False
+    if tcp is not None:
+        return check_tcp(tcp, repr(tcp)), False
+    from ..method.solve import NO_TCP
+    raise UcsioError(NO_TCP)
 
 
 def tool_tcp(spec: str) -> tuple[float, float, float]:
@@ -133,64 +160,72 @@ def tool_tcp(spec: str) -> tuple[float, float, float]:
     return tcp_of(find_frame(load(file), name), "--tool")
 
 
-def run(args) -> int:
-    import io
-    import json
-
+def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", config=None,
+          robot_tool: str = "tool0", robot_wobj: str = "wobj0", map=None, tcp=None, tool=None,
+          threshold: float = defaults.THRESHOLD, min_points: int = defaults.MIN_POINTS,
+          exclude=(), no_exclusion: bool = False, reach: float = defaults.REACH, at=None,
+          gate: str = "reach", uncertainty: int = 0,
+          sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
+          seed: int = 0):
+    """The command's work, for ``run`` and ``ucsio.api.solve`` alike: (the
+    solver's Solution, --json's document without ``schema_version``, the
+    readers' warnings). Each keyword is the option of that name; ``at`` may
+    also be ``readers.points.Points``."""
     from ..method import solve as solver
-    from ..output import _clean, emit_json
 
-    if args.uncertainty and args.uncertainty < 2:
+    if uncertainty and uncertainty < 2:
         raise UcsioError("--uncertainty N: needs at least 2 samples")
-    if args.uncertainty:
-        from ..method.solve import check_sigmas
-        check_sigmas(args.sigma_laser, args.sigma_robot)
-    to_stdout = args.output == "-"
-    if args.output is not None and not to_stdout:
-        folder = os.path.dirname(os.path.abspath(args.output))
-        if not os.path.isdir(folder):
-            raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
-    solve_tcp = args.tcp is not None and args.tcp.strip().casefold() == "solve"
-    if args.tool:
-        tcp = tool_tcp(args.tool)
-    elif solve_tcp:
-        tcp = None
-    elif args.tcp is not None:
-        tcp = parse_tcp(args.tcp)
-    else:
-        raise UcsioError(solver.NO_TCP)
-    solver.check_sigmas(args.sigma_laser, args.sigma_robot)
-    at = None
-    if args.at is not None:
+    if uncertainty:
+        solver.check_sigmas(sigma_laser, sigma_robot)
+    fixed, solve_tcp = resolve_tcp(tcp, tool)
+    solver.check_sigmas(sigma_laser, sigma_robot)
+    points = at
+    if isinstance(at, (str, os.PathLike)):
         from ..readers.points import read_points
-        at = read_points(args.at)
-    solver.check_gate(args.gate, at)
-    meas, warnings = read_inputs(args)
-    settings = dict(threshold=args.threshold, min_points=args.min_points,
-                    no_exclusion=args.no_exclusion, reach=args.reach,
-                    sigma_laser=args.sigma_laser, sigma_robot=args.sigma_robot)
+        points = read_points(at)
+    solver.check_gate(gate, points)
+    meas, warnings = read_inputs(measurement, laser, robot, laser_units=laser_units,
+                                 config=config, robot_tool=robot_tool, robot_wobj=robot_wobj,
+                                 map=map)
+    settings = dict(threshold=threshold, min_points=min_points, no_exclusion=no_exclusion,
+                    reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot)
+    exclude = list(exclude or ())
     if solve_tcp:
         from ..method.tcp_solve import solve_joint
-        sol = solve_joint(meas, exclude=args.exclude, at=at, gate=args.gate, **settings)
+        sol = solve_joint(meas, exclude=exclude, at=points, gate=gate, **settings)
     else:
-        sol = solver.solve(meas, tcp, exclude=args.exclude, tool=args.tool, at=at,
-                           gate=args.gate, **settings)
+        sol = solver.solve(meas, fixed, exclude=exclude, tool=tool, at=points, gate=gate,
+                           **settings)
         if not sol.accepted:
             from ..method.tcp_solve import diagnose
             sol.diagnosis = diagnose(meas, sol, **settings)
             if sol.diagnosis:
                 sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
     if sol.working_points is not None:
-        sol.at_source = args.at
-    if args.uncertainty and solve_tcp:
-        from ..method.tcp_solve import uncertainty
-        sol.uncertainty = uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
-                                      args.sigma_robot, args.seed)
-    elif args.uncertainty:
-        solver.solution_uncertainty(meas, sol, args.uncertainty, args.sigma_laser,
-                                    args.sigma_robot, args.seed)
+        sol.at_source = os.fspath(at) if isinstance(at, (str, os.PathLike)) else \
+            getattr(points, "path", None)
+    if uncertainty and solve_tcp:
+        from ..method.tcp_solve import uncertainty as joint_uncertainty
+        sol.uncertainty = joint_uncertainty(meas, sol, uncertainty, sigma_laser, sigma_robot,
+                                            seed)
+    elif uncertainty:
+        solver.solution_uncertainty(meas, sol, uncertainty, sigma_laser, sigma_robot, seed)
     result = sol.as_dict()
     result["warnings"] = warnings + result["warnings"]
+    return sol, result, warnings
+
+
+def run(args) -> int:
+    from . import options_for
+    from ..method.solution import solution_text
+    from ..output import emit_json
+
+    to_stdout = args.output == "-"
+    if args.output is not None and not to_stdout:
+        folder = os.path.dirname(os.path.abspath(args.output))
+        if not os.path.isdir(folder):
+            raise UcsioError(f"-o {args.output}: folder {folder} does not exist")
+    sol, result, warnings = solve(**options_for(solve, args))
     for w in warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
 
@@ -200,10 +235,7 @@ def run(args) -> int:
             print(render(sol, sys.stderr), end="", file=sys.stderr)
         return 0 if sol.accepted else 1
     if args.output is not None:
-        buf = io.StringIO()
-        json.dump(_clean(result), buf, indent=2, ensure_ascii=False)
-        buf.write("\n")
-        atomic_write_text(args.output, buf.getvalue())  # errors: one UcsioError
+        atomic_write_text(args.output, solution_text(result))  # errors: one UcsioError
 
     if args.json:
         emit_json(result)

@@ -200,15 +200,12 @@ def _sh(word: str) -> str:
 def write_inputs(cell: Cell, root: Path, folder: Path, sol) -> None:
     """The cell's inputs as shipped, the solution (as ``solve -o`` writes it)
     and replay.sh, so every step can be replayed by hand."""
-    import json
-
     from ..files import atomic_write, atomic_write_text
-    from ..output import _clean
+    from ..method.solution import solution_text
     for rel in (cell.controller, cell.measurement, cell.robot):
         if rel is not None:
             atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
-    atomic_write_text(folder / "solution.json",
-                      json.dumps(_clean(sol.as_dict()), indent=2, ensure_ascii=False) + "\n")
+    atomic_write_text(folder / "solution.json", solution_text(sol.as_dict()))
     atomic_write_text(folder / "replay.sh", replay_script(cell))
     try:
         os.chmod(folder / "replay.sh", 0o755)

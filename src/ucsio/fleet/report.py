@@ -1041,9 +1041,9 @@ def write_report(result, path: str, csv: str | None = None) -> None:
     written beside it, linked from the report."""
     from .. import __version__
     from ..files import atomic_write_text
-    from ..output import _clean
+    from ..output import _clean, versioned
 
-    data = _clean(result.as_dict())
+    data = _clean(versioned(result.as_dict()))      # batch --json's document, embedded
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0)
     meta = {"generated": now.strftime("%Y-%m-%d %H:%M UTC"), "version": __version__,
             "csv": csv, "base": os.path.dirname(os.path.abspath(path))}

@@ -19,6 +19,29 @@ if TYPE_CHECKING:
     from typing import Any
 
 
+def solution_text(doc: dict[str, Any]) -> str:
+    """What ``solve -o`` (and ``demo --out``) writes: ``solve --json``'s
+    document with ``schema_version``, indented, NaN and inf as null."""
+    from ..output import _clean, versioned
+    return json.dumps(_clean(versioned(doc)), indent=2, ensure_ascii=False) + "\n"
+
+
+def check_schema_version(data: Any, path: str | None = None) -> None:
+    """A SOLUTION.json without ``schema_version`` (older ucsio) is read as it
+    is; one from a newer schema is refused: its keys may mean something this
+    ucsio does not know."""
+    from ..output import SCHEMA_VERSION
+    if not isinstance(data, dict) or "schema_version" not in data:
+        return
+    v = data["schema_version"]
+    if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+        raise UcsioError(f"schema_version {v!r}: expected a whole number from 1", file=path)
+    if v > SCHEMA_VERSION:
+        raise UcsioError(f"written with schema_version {v} by a newer ucsio; this one reads up "
+                         f"to {SCHEMA_VERSION}: upgrade ucsio (pip install -U ucsio) or solve "
+                         "again with this one", file=path)
+
+
 def load_solution(path: str | os.PathLike, allow_rejected: bool = False) -> Pose:
     """The frame of a SOLUTION.json written by ``ucsio solve -o``, or of a
     plain JSON object with x, y, z and either a, b, c (KUKA) or q (ABB order).
@@ -71,6 +94,7 @@ def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = Fa
     ``{x, y, z, a, b, c | q}`` object; errors name ``path``."""
     if not isinstance(data, dict):
         raise UcsioError("expected a JSON object with a 'frame' or x, y, z ...", file=path)
+    check_schema_version(data, path)
     if data.get("accepted") is False and not allow_rejected:
         # the solver's own reason (SOLUTION.json "reason"); an older or
         # hand-made file without one gets the generic wording

@@ -21,6 +21,10 @@ import os
 from ..errors import UcsioError
 from ..values import Value
 
+TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
+if TYPE_CHECKING:
+    from .controller import ControllerFile
+
 # SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
 BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls")
 # SPEC: a FANUC backup's binary files, listed as not read
@@ -221,7 +225,7 @@ def single_input(paths: list[str]) -> bool:
     return len(paths) == 1 and not is_many(os.fspath(paths[0]))
 
 
-def load_one(name: str, full: bool = False):
+def load_one(name: str, full: bool = False) -> ControllerFile:
     """A single controller file, which may be an archive member."""
     if is_member(name):
         archive, member = split_member(name)

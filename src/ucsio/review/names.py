@@ -11,10 +11,15 @@ from __future__ import annotations
 from ..errors import UcsioError
 from ..parsing import regex
 
+TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
+if TYPE_CHECKING:
+    from ..geometry.frames import Frame
+    from ..parsing.controller import ControllerFile
+
 _ELEMENT = regex.lazy(r"\s*([A-Za-z_$][\w$]*)\s*(?:\[\s*([+-]?\d+)\s*\]|\{\s*([+-]?\d+)\s*\})\s*\Z")
 
 
-def find_frame(cf, name: str):
+def find_frame(cf: ControllerFile, name: str) -> Frame:
     """The frame called ``name`` in ``cf`` (UcsioError naming the file when
     there is none, or more than one)."""
     try:
