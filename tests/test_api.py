@@ -273,3 +273,24 @@ def test_no_command_imports_the_api():
                 assert not names & {"api", "results", "ucsio.api", "ucsio.results"}, path
             elif isinstance(node, ast.Import):
                 assert not {a.name for a in node.names} & {"ucsio.api", "ucsio.results"}, path
+
+
+def test_fanuc_files_and_backups(tmp_path):
+    from test_schemas import FANUC, fanuc_backup
+    files = [str(FANUC / "sysframe_comment.va"), str(FANUC / "program_frames.ls")]
+    f = api.frames(files)
+    same(f, "frames", *files)
+    uf = next(x for x in f.frames if x.name == "UF1")
+    assert (uf.group, uf.w, uf.p, uf.r) == (1, uf.c, uf.b, uf.a) and uf.label == "FIXTURE_A"
+    same(api.check(files), "check", *files, codes=(0, 1))
+    if not (ROOT.parent / "shared" / "corpus" / "fanuc").is_dir():
+        pytest.skip("the shared corpus (../shared/corpus/fanuc) is absent")
+    old, new = fanuc_backup(tmp_path / "old"), fanuc_backup(tmp_path / "new")
+    (new / "NUMREG.VR").write_bytes(b"\x00\x03VRBIN" * 10)
+    listed = api.frames(new)
+    same(listed, "frames", new)
+    assert sorted(n.file.rsplit("/", 1)[-1] for n in listed.not_read) == \
+        ["NUMREG.VR", "SYSFRAME.SV", "TD_GUN1.TP"]
+    d = api.diff_backups(old, new)
+    same(d, "diff", old, new)
+    assert [x.not_read for x in d.files_added if x.path == "NUMREG.VR"][0]

@@ -1,7 +1,9 @@
 """ucsio: measured user frames for ABB RAPID and KUKA KRL controller files.
 
-The Python API mirrors the commands in ``ucsio.api`` (load, frames, solve,
-diff_frame, diff_files, patch, save); the basics are here too::
+The Python API mirrors the commands in ``ucsio.api`` (frames, check, solve,
+diff_frame, taught_points, diff_files, diff_backups, patch, save, batch, plan,
+demo: each returns the command's --json document; docs/python-api.md); the
+basics are here too::
 
     import ucsio
     cell = ucsio.load("R01/$config.dat")      # parse a controller file

@@ -158,13 +158,20 @@ class Worst(Result):
 
 # ------------------------------------------------------------------ frames
 
+class NotRead(Result):
+    """A file listed but not read (a FANUC backup's binary .tp .sv .vr)."""
+    file: str
+    reason: str
+
+
 class FrameItem(Result):
     """One frame of a controller file: where (``file``, ``line``), what
-    (``vendor`` abb or kuka, ``type`` wobjdata, tooldata, BASE_DATA, ...,
-    ``reference`` the frame it is relative to: world, flange, a uframe), its
-    pose (``x y z`` mm, ``a b c`` deg, ``q``; None where the file gives no
-    literal value), ``label`` where the file names it, ``set`` (False for an
-    unset KUKA entry)."""
+    (``vendor`` abb, kuka or fanuc, ``type`` wobjdata, tooldata, BASE_DATA,
+    UFRAME, ..., ``reference`` the frame it is relative to: world, flange, a
+    uframe), its pose (``x y z`` mm, ``a b c`` deg, ``q``; None where the
+    file gives no literal value), ``label`` where the file names it, ``set``
+    (False for an unset KUKA or FANUC entry); FANUC's ``group`` and ``w p r``
+    (deg; w = c, p = b, r = a)."""
     name: str
     file: str
     line: int
@@ -180,15 +187,20 @@ class FrameItem(Result):
     q: list[float] | None
     label: str | None
     set: bool
+    group: int | None
+    w: float | None
+    p: float | None
+    r: float | None
 
 
 class FramesResult(Result):
     """``ucsio frames --json``: every frame of the files read, the files read,
-    and the files that could not be read."""
+    the files that could not be read, and those listed as not read."""
     schema_version: int
     frames: list[FrameItem]
     files: list[str]
     errors: list[ErrorInfo]
+    not_read: list[NotRead]
 
 
 # ------------------------------------------------------------------ check
@@ -208,6 +220,7 @@ class CheckedFile(Result):
     whether the byte-exact ``round_trip`` holds, and its ``lints``."""
     file: str
     vendor: str
+    kind: str | None            # FANUC: program, frame comments, ...
     encoding: str
     frames: int
     round_trip: bool
@@ -235,6 +248,7 @@ class CheckResult(Result):
     schema_version: int
     files: list[CheckedFile]
     errors: list[ErrorInfo]
+    not_read: list[NotRead]
     ok: bool
 
     @property
@@ -483,6 +497,7 @@ class FileListed(Result):
     path: str
     file: str
     frames: list[str]
+    not_read: str | None        # why a binary file is not read
 
 
 class FileChanged(Result):
@@ -497,6 +512,7 @@ class FileChanged(Result):
     frames_removed: int | None
     other_lines: bool | None
     error: str | None
+    not_read: str | None
 
 
 class BackupsDiff(Result):
@@ -716,7 +732,7 @@ class DemoResult(Result):
     out: str | None
 
 
-__all__ = ["Result", "PoseValues", "ErrorInfo", "FrameItem", "FramesResult", "CheckResult",
+__all__ = ["Result", "PoseValues", "ErrorInfo", "NotRead", "FrameItem", "FramesResult", "CheckResult",
            "CheckedFile", "Lint", "Finding", "SolveResult", "Solve", "SolvedFrame", "SolvePoint",
            "Tcp", "Precision", "Uncertainty", "Spread", "Consistency", "WorkingPoint", "Worst",
            "DiffResult", "Diff", "FrameDiff", "TaughtPoints", "TaughtPoint", "PointsMoved",
