@@ -14,6 +14,7 @@ import shlex
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -263,9 +264,12 @@ def test_reading_listing_and_diffing_fanuc_files_stays_light(tmp_path):
         seen.append(json.loads(res.stdout.strip().splitlines()[-1]))
     assert [s["code"] for s in seen] == [0] * len(runs)
     assert all(not set(s["heavy"]) & {"numpy", "scipy"} for s in seen), seen
-    from ucsio.parsing import grammar
-    from pathlib import Path
-    if any(Path(grammar.grammar_dir()).glob("*.tables.marshal")):     # a wheel ships them
+    # the grammars the probes read (PYTHONPATH=src: the checkout's, even where
+    # the test itself runs from an installed wheel, which ships tables)
+    where = subprocess.run([sys.executable, "-c", "from ucsio.parsing import grammar; "
+                            "print(grammar.grammar_dir())"], env=env, capture_output=True,
+                           text=True, check=True).stdout.strip()
+    if any(Path(where).glob("*.tables.marshal")):     # a wheel ships them
         assert all(s["heavy"] == [] for s in seen), seen
     else:
         assert [s["heavy"] for s in seen] == [["lark"], ["lark"]] + [[]] * 5, seen
