@@ -439,10 +439,10 @@ def test_codes_are_never_lost_or_reused():
         assert re.fullmatch(r"[a-z][a-z0-9]*(-[a-z0-9]+)*", code), code
 
 
-def test_every_code_is_in_the_readme_table():
+def test_every_code_is_in_the_docs_table():
     from ucsio.parsing.controller import FILE_CODES, RETIRED
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = readme.split("### Lint codes", 1)[1].split("\n### ", 1)[0]
+    page = (ROOT / "docs" / "controllers.md").read_text(encoding="utf-8")
+    section = page.split("## Lint codes", 1)[1].split("\n## ", 1)[0]
     for code in [*FILE_CODES, *RETIRED]:
         assert f"`{code}`" in section, code
 
@@ -460,14 +460,14 @@ def test_file_codes_cannot_be_ignored_and_retired_ones_are_accepted(monkeypatch,
 # -- VS Code ---------------------------------------------------------------------------
 
 def vscode_task() -> dict:
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    blocks = re.findall(r"```json\n(.*?)```", readme, re.S)
+    page = (ROOT / "docs" / "git-and-ci.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```json\n(.*?)```", page, re.S)
     (block,) = [b for b in blocks if '"problemMatcher"' in b]
     return json.loads(block)
 
 
-def test_readme_problem_matcher_reads_real_concise_output(cell):
-    """The README's tasks.json is valid JSON, runs check in the concise
+def test_docs_problem_matcher_reads_real_concise_output(cell):
+    """The docs' tasks.json is valid JSON, runs check in the concise
     format, and its problem matcher's regular expression (JavaScript syntax;
     Python reads this one alike) takes file, line, column, severity, code
     and message from every line check prints."""

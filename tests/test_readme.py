@@ -1,5 +1,6 @@
-"""The README documents what ucsio does (issue 11 point 7): its first line is
-a virtual-environment line, the measurement CSV example is read as written,
+"""The README and the docs document what ucsio does (issue 11 point 7; since
+issue 21 the reference lives in docs/): the README's first line is a
+virtual-environment line, the measurement CSV example is read as written,
 the manifest example names every key batch accepts and is a valid manifest,
 every lint code is in the table, and the backup review is shown."""
 from __future__ import annotations
@@ -9,11 +10,16 @@ import tomllib
 
 from conftest import ROOT
 
-README = (ROOT / "README.md").read_text()
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+DOCS = ROOT / "docs"
 
 
-def code_blocks(lang: str) -> list[str]:
-    return re.findall(r"```" + lang + r"\n(.*?)```", README, re.S)
+def page(name: str) -> str:
+    return (DOCS / name).read_text(encoding="utf-8")
+
+
+def code_blocks(lang: str, text: str = README) -> list[str]:
+    return re.findall(r"```" + lang + r"\n(.*?)```", text, re.S)
 
 
 def test_first_two_lines_make_a_virtual_environment_with_python3():
@@ -40,13 +46,14 @@ def test_readme_says_which_pythons_and_how_on_windows():
 
 def test_measurement_example_is_read_as_written(tmp_path):
     from ucsio.method.measurement import KNOWN, read_measurement
-    (csv,) = code_blocks("csv")
+    measurements = page("measurements.md")
+    (csv,) = code_blocks("csv", measurements)
     path = tmp_path / "points.csv"
     path.write_text(csv)
     m = read_measurement(path)
     assert m.names == ["P1", "P2"] and m.form == "kuka"
     assert m.laser[1].tolist() == [800.0, 0.0, 0.0] and m.weights.tolist() == [1.0, 1.0]
-    section = README.split("### Measurement files", 1)[1].split("\n### ", 1)[0]
+    section = measurements.split("## The measurement CSV", 1)[1].split("\n## ", 1)[0]
     documented = set(re.findall(r"`([a-z_0-9]+)`", section))
     if "`robot_q1` … `robot_q4`" in section:
         documented |= {"robot_q2", "robot_q3"}
@@ -55,7 +62,7 @@ def test_measurement_example_is_read_as_written(tmp_path):
 
 def test_manifest_example_names_every_key_and_is_valid():
     from ucsio.fleet import batch
-    blocks = [b for b in code_blocks("toml") if "[[entry]]" in b]
+    blocks = [b for b in code_blocks("toml", page("batch.md")) if "[[entry]]" in b]
     example = max(blocks, key=len)
     data = tomllib.loads(example)
     keys = set(data["defaults"]) | {k for e in data["entry"] for k in e}
@@ -69,27 +76,27 @@ def test_manifest_example_names_every_key_and_is_valid():
 
 def test_every_lint_code_is_in_the_table():
     from ucsio.parsing.controller import LINT_CODES
-    section = README.split("### Lint codes", 1)[1].split("\n### ", 1)[0]
+    section = page("controllers.md").split("## Lint codes", 1)[1].split("\n## ", 1)[0]
     for code in LINT_CODES:
         assert f"`{code}`" in section, code
 
 
-def test_commands_section_shows_a_backup_to_backup_review():
-    commands = README.split("## Commands", 1)[1].split("\n## ", 1)[0]
-    assert "ucsio diff   backup_2026-11-30/ backup_2026-12-01/ --exit-code" in commands
-    assert "$ ucsio diff backup_old/ backup_new/" in commands
-    assert "files:  3 changed, 1 added, 1 removed" in commands
+def test_the_docs_show_a_backup_to_backup_review():
+    """A review of two whole backups, run by tests/test_docs_commands.py."""
+    diff = page("commands.md").split("\n## diff", 1)[1].split("\n## ", 1)[0]
+    (block,) = [b for b in code_blocks("sh", diff) if "backup_old/ backup_new/" in b]
+    assert "ucsio diff backup_old/ backup_new/ --exit-code       # exit 1" in block
 
 
 def test_planning_walk_through_runs_as_written(tmp_path):
-    """Issue 20 point 7: the README's "Planning a measurement" walk-through,
+    """Issue 20 point 7: docs/planning.md's walk-through,
     line by line in bash on the demo cells; each exit status as annotated
-    (`# exit N`, else 0), and the first plan's output as the README shows it."""
+    (`# exit N`, else 0), and the first plan's output as the page shows it."""
     import os
     import subprocess
     import sys
 
-    section = README.split("## Planning a measurement", 1)[1].split("\n## ", 1)[0]
+    section = page("planning.md").split("\n## ", 1)[0]
     script = re.findall(r"```sh\n(.*?)```", section, re.S)[0]
     shown = re.findall(r"```text\n(.*?)```", section, re.S)[0]
     lines = [f'ucsio() {{ "{sys.executable}" -m ucsio "$@"; }}']
@@ -115,4 +122,4 @@ def test_planning_walk_through_runs_as_written(tmp_path):
         if code == 1 and first_fail is None:
             first_fail = out
     assert first_fail == shown
-    assert "Planning a measurement" in README and "bench_plan.py" in README
+    assert "planning.md" in README and "bench_plan.py" in page("planning.md")
