@@ -6,15 +6,33 @@ never pays for scipy.
 """
 from __future__ import annotations
 
-import argparse
-import importlib
 import os
 import re
 import sys
 
+from .parsing import regex
+
+regex.prime_stdlib()        # before argparse, json and difflib compile their patterns
+if "argparse" not in sys.modules and "gettext" not in sys.modules:
+    # argparse imports gettext, and its first message looks for translation
+    # catalogues (importing locale, a verbose regex, a stat per language):
+    # about a tenth of a short command's start-up, for argparse's few English
+    # words, which no Python we support ships a catalogue of. A stand-in with
+    # the two functions argparse takes is removed at once: anything importing
+    # gettext later gets the real one.
+    _stand_in = type(sys)("gettext")
+    _stand_in.gettext = lambda message: message
+    _stand_in.ngettext = lambda singular, plural, n: singular if n == 1 else plural
+    sys.modules["gettext"] = _stand_in
+    try:
+        import argparse
+    finally:
+        del sys.modules["gettext"]
+else:
+    import argparse
+
 from . import __version__
 from .errors import UcsioError, UsageError, did_you_mean
-from .parsing import regex
 
 COMMANDS = {
     "frames": "list every frame in controller files, backup folders or .zip archives",
@@ -104,7 +122,8 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     for name, help_text in COMMANDS.items():
         if command is not None and name != command:
             continue
-        module = importlib.import_module(f"ucsio.commands.{name}")
+        __import__(f"ucsio.commands.{name}")       # not importlib: it imports warnings
+        module = sys.modules[f"ucsio.commands.{name}"]
         p = sub.add_parser(name, help=help_text, description=module.__doc__,
                            formatter_class=_RawHelp)
         _accept_negative_lists(p)

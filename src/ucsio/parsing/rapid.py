@@ -54,8 +54,11 @@ def _grammar_terminal(name: str) -> str:
     routines and records with the grammar's own patterns, so the two paths
     cannot drift apart."""
     with open(os.path.join(grammar_dir(), "rapid.lark"), encoding="utf-8") as fh:
-        text = fh.read()
-    return re.search(rf"^{name}(?:\.\d+)?: /(.*)/i$", text, re.M).group(1)
+        for line in fh:         # "ROUTINE.2: /.../i" (no regex: none compiled at start-up)
+            head, sep, rest = line.rstrip("\r\n").partition(": /")
+            if sep and head.split(".")[0] == name and rest.endswith("/i"):
+                return rest[:-2]
+    raise LookupError(f"rapid.lark has no terminal {name}")
 
 
 # between keywords: whitespace and comments ("PERS ! shared\n  wobjdata w ...")

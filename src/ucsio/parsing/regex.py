@@ -86,7 +86,7 @@ def _load_store() -> dict:
     return _store
 
 
-def _compiled(source: str, flags: int) -> re.Pattern:
+def _compiled(source, flags: int) -> re.Pattern:
     global _dirty
     store = _load_store() if _store is None else _store
     key = (source, int(flags))
@@ -144,6 +144,45 @@ def save_cache() -> None:
             write_cache(path, marshal.dumps(_store, 4))
     except (OSError, ValueError):
         pass
+
+
+# The standard library's own patterns that a short command compiles: json's
+# scanner and encoder, and difflib's line-junk test, when they are imported;
+# argparse's, when it reads the command line. re compiles each in pure Python
+# (difflib's, a Unicode ``\s``, takes 4 ms, more than reading a 26 KB module);
+# put into re's own cache from ours, they cost what a cached pattern costs.
+# A pattern another Python's modules do not use is simply never looked up
+# (tests/test_regex.py checks that each is what re.compile makes, and that
+# no command compiles one anew).
+STDLIB: tuple[tuple[str | bytes, int], ...] = (
+    # json.scanner, json.decoder (VERBOSE | MULTILINE | DOTALL), json.encoder
+    (r"(-?(?:0|[1-9]\d*))(\.\d+)?([eE][-+]?\d+)?", 88),
+    (r'(.*?)(["\\\x00-\x1f])', 88),
+    (r"[ \t\n\r]*", 88),
+    (r'[\x00-\x1f\\"\b\f\n\r\t]', 0),
+    (r'([\\"]|[^\ -~])', 0),
+    (b"[\x80-\xff]", 0),
+    (r"\s*(?:#\s*)?$", 0),                       # difflib.IS_LINE_JUNK
+    # argparse: negative numbers, help text, its nargs patterns
+    (r"^-\d+$|^-\d*\.\d+$", 0), (r"\s+", 256), (r"\n\n\n+", 0),
+    ("(-*A-*)", 0), ("(-*A?-*)", 0), ("(-*[A-]*)", 0), ("(-*A[A-]*)", 0), ("(-*A[-AO]*)", 0),
+    ("(A)", 0), ("(A?)", 0), ("([A]*)", 0), ("(A[A]*)", 0),
+)
+
+
+def prime_stdlib() -> None:
+    """Give re's cache the standard library's patterns (``STDLIB``) from the
+    compiled-pattern cache. Where ``re`` keeps no such cache, nothing."""
+    cache = getattr(re, "_cache", None)
+    if not isinstance(cache, dict):
+        return
+    for source, flags in STDLIB:
+        key = (type(source), source, flags)
+        if key not in cache:
+            try:
+                cache[key] = _compiled(source, flags)
+            except Exception:       # noqa: BLE001 - re compiles it when it is used
+                pass
 
 
 class lazy:

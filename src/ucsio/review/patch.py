@@ -37,7 +37,6 @@ import itertools
 import math
 import os
 import re
-import struct
 
 from ..errors import UcsioError
 from ..files import atomic_write, write_target
@@ -105,10 +104,14 @@ def _parse_text(text: str) -> float:
     return float(text.replace(" ", "").replace("\t", ""))
 
 
+_F32 = memoryview(bytearray(4)).cast("f")      # struct's rounding, without importing struct
+
+
 def f32(v: float) -> float:
     """``v`` rounded through IEEE single precision (RAPID num, KRL REAL)."""
     try:
-        return struct.unpack("f", struct.pack("f", v))[0]
+        _F32[0] = v
+        return _F32[0]
     except OverflowError:
         return v
 
