@@ -423,10 +423,12 @@ def test_check_lists_each_fanuc_file_with_its_kind():
                "unread-frame-set,duplicate-frame").returncode == 0
 
 
-def test_patch_of_a_fanuc_frame_is_refused_for_now(tmp_path):
+def test_a_sysframe_va_is_never_patched_in_place(tmp_path):
+    """The listing is the controller's record, not a file it loads: only a
+    reviewed copy (-o) is written (tests/test_fanuc_write.py)."""
     target = tmp_path / "sysframe.va"
     shutil.copy(FANUC / "sysframe_comment.va", target)
     before = target.read_bytes()
     res = run("patch", target, "--frame", "UF1", "--set", "1,2,3,0,0,0", "--in-place")
-    assert res.returncode == 2 and "does not write them yet" in res.stderr
+    assert res.returncode == 2 and "does not load it: not patched in place" in res.stderr
     assert target.read_bytes() == before and sorted(os.listdir(tmp_path)) == ["sysframe.va"]

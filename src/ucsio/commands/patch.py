@@ -1,8 +1,11 @@
 """Write a frame back into a controller file, in the vendor's native form
-(ABB quaternion, KUKA A, B, C), changing only that frame's numbers.
+(ABB quaternion, KUKA A, B, C, FANUC X Y Z W P R), changing only that frame's
+numbers.
 
-Inputs: FILE (a RAPID module or KRL .dat file; not a file inside a .zip
-archive: extract it first), the frame's name, and the values: --measured
+Inputs: FILE (a RAPID module, a KRL .dat file, a FANUC TP program .ls that
+sets the frame from literal PR[n,i]= lines, or a FANUC sysframe.va; not a
+file inside a .zip archive: extract it first), the frame's name, and the
+values: --measured
 SOLUTION.json (written by `ucsio solve -o`; - reads it from standard input),
 or --set / --set-q.
 
@@ -30,7 +33,17 @@ TOOL_DATA) with a solution from `solve --tcp solve` gets the solved TCP's x, y,
 z and nothing else (orientation, mass and load stay); a solution whose TCP was
 given has none to write there (exit 2). --set and --set-q take the values as
 given, in the frame's own
-reference (negative values need no "=": --set -5,1,2,0,0,0)."""
+reference (negative values need no "=": --set -5,1,2,0,0,0).
+
+FANUC: in a TP program (UFRAME[1:FIXTURE]=PR[16] after PR[16,1]=(-.4) ...)
+the six PR[16,i] values are replaced, in the program's own style (negatives
+in parentheses, no leading zero, to 0.001 mm and 0.001 deg); refused (exit
+2, file:line:col) where the program does not write all six as literals of
+their own (PR[16]=LPOS alone, LPOS-LPOS zeros, an indirect index, a value
+another frame reads too) or sets the frame twice differently. A UTk gets the
+solved TCP's x, y, z. A sysframe.va gets a reviewed copy (-o OUT; never
+--in-place): the controller does not load .va files; `ucsio program`
+writes a TP program that sets the frame."""
 from __future__ import annotations
 
 import sys
@@ -39,13 +52,16 @@ from ..output import emit_json
 
 
 def add_arguments(p) -> None:
-    p.add_argument("file", metavar="FILE", help="RAPID module or KRL .dat file")
+    p.add_argument("file", metavar="FILE",
+                   help="RAPID module, KRL .dat file, FANUC TP program (.ls) or sysframe.va")
     p.add_argument("--frame", required=True, metavar="NAME",
-                   help="frame to patch (wobj1, wobj1.oframe, tool1, BASE_DATA[3] or its label)")
+                   help="frame to patch (wobj1, wobj1.oframe, tool1, BASE_DATA[3], UF1, UT2 "
+                        "or its label)")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--measured", metavar="SOLUTION.json",
                      help="the solution written by `ucsio solve -o` (the UCS in robot world)")
-    src.add_argument("--set", metavar="X,Y,Z,A,B,C", help="values in mm and degrees (KUKA A, B, C)")
+    src.add_argument("--set", metavar="X,Y,Z,A,B,C",
+                     help="values in mm and degrees (KUKA A, B, C; FANUC: A=R, B=P, C=W)")
     src.add_argument("--set-q", metavar="X,Y,Z,Q1,Q2,Q3,Q4", help="values in mm and an ABB quaternion")
     p.add_argument("--oframe", action="store_true", help="ABB: patch the object frame of the wobj")
     p.add_argument("--force", action="store_true",
@@ -97,7 +113,11 @@ def solved_tcp_for(cf, name: str, oframe: bool, solution, path=None, force: bool
     from ..review.patch import resolve_name, robot_held_tool
     from ..method.solution import solved_tcp
 
-    frame = find_frame(cf, resolve_name(name, oframe))
+    found = cf.matches(resolve_name(name, oframe))
+    if found and len({f.name.casefold() for f in found}) == 1:
+        frame = found[0]        # a TP program that sets it twice: patch_frame says more
+    else:
+        frame = find_frame(cf, resolve_name(name, oframe))
     if not robot_held_tool(frame):
         return None
     return solved_tcp(solution, path, allow_rejected=force)

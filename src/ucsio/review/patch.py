@@ -63,6 +63,11 @@ READBACK_ANGLE_DEG = 5e-4
 
 ABB_KEYS = ("x", "y", "z", "q1", "q2", "q3", "q4")
 KUKA_KEYS = ("x", "y", "z", "a", "b", "c")
+FANUC_KEYS = ("x", "y", "z", "w", "p", "r")
+# FANUC: a TP program's PR[n,i] values and a listing's columns, mm and deg
+FANUC_DECIMALS = 3
+# read back within 0.001 mm and 0.001 deg (three angles each to 0.001 deg)
+READBACK_FANUC_ANGLE_DEG = 1e-3
 
 
 # ----------------------------------------------------------------- numbers
@@ -121,11 +126,14 @@ def f32(v: float) -> float:
 class Change(Value):
     """One number rewritten: its component, old and new text and value."""
 
-    __slots__ = ("component", "old", "new", "old_value", "new_value")
+    __slots__ = ("component", "old", "new", "old_value", "new_value", "number")
+    _compare = ("component", "old", "new", "old_value", "new_value")
 
-    def __init__(self, component: str, old: str, new: str, old_value: float, new_value: float):
+    def __init__(self, component: str, old: str, new: str, old_value: float, new_value: float,
+                 number: Number | None = None):
         self.component, self.old, self.new = component, old, new
         self.old_value, self.new_value = old_value, new_value
+        self.number = number        # the Number replaced, where not frame.numbers[component]
 
     def as_dict(self) -> dict[str, Any]:
         return {"component": self.component, "old": self.old, "new": self.new,
@@ -143,14 +151,17 @@ def _translation_changes(frame: Frame, pose: Pose, point: bool) -> list[Change]:
     out = []
     half = 0.5 * 10.0 ** -TRANS_DECIMALS
     style = _column([frame.numbers[k] for k in "xyz"], TRANS_DECIMALS)
+    fanuc = fanuc_style(frame) if frame.vendor == "fanuc" else None
     for key, v in zip("xyz", pose.t):
         n = frame.numbers[key]
         if abs(v - n.value) <= half:
             continue
-        text = format_number(v, TRANS_DECIMALS, point=point, old_text=style)
+        text = (fanuc.number(v) if fanuc is not None else
+                format_number(v, TRANS_DECIMALS, point=point, old_text=style))
         if _parse_text(text) == n.value:
             continue
-        out.append(Change(key, n.written, text, n.value, _parse_text(text)))
+        out.append(Change(key, n.written, text, n.value, _parse_text(text),
+                          n if fanuc is not None else None))
     return out
 
 
@@ -255,7 +266,8 @@ def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
 
 
 def native_keys(frame: Frame) -> tuple[str, ...]:
-    return ABB_KEYS if frame.vendor == "abb" else KUKA_KEYS
+    return ABB_KEYS if frame.vendor == "abb" else FANUC_KEYS if frame.vendor == "fanuc" \
+        else KUKA_KEYS
 
 
 def plan(frame: Frame, pose: Pose) -> list[Change]:
@@ -267,11 +279,20 @@ def plan(frame: Frame, pose: Pose) -> list[Change]:
                          file=frame.file, line=frame.line)
     if frame.vendor == "abb":
         return _translation_changes(frame, pose, point=False) + _quat_changes(frame, pose)
+    if frame.vendor == "fanuc":
+        return _translation_changes(frame, pose, point=False) + _wpr_changes(frame, pose)
     return _translation_changes(frame, pose, point=True) + _angle_changes(frame, pose)
 
 
 def edits_for(frame: Frame, changes: list[Change]) -> list[Edit]:
     text = frame.document.text if frame.document is not None else ""
+    if frame.vendor == "fanuc":
+        listing = is_listing(frame)
+        edits = {}          # a program's frame set twice from one PR line: that line once
+        for c in changes:
+            n = c.number if c.number is not None else frame.numbers[c.component]
+            edits[n.span.start] = fanuc_edit(text, n, c.new, listing)
+        return list(edits.values())
     edits: list[Edit] = []
     for c in changes:
         edits += number_edits(text, frame.numbers[c.component], c.new)
@@ -307,6 +328,188 @@ def number_edits(text: str, n: Number, new: str) -> list[Edit]:
     if _parse_text(new) == 0.0:
         return [Edit(n.span, new)]           # -0 is 0
     return [Edit(s, "") for s in n.signs] + [Edit(n.span, new)]
+
+
+# ----------------------------------------------------------------- FANUC
+
+def fanuc_number(value: float, *, style: str | None = "0.000", leading_zero: bool = False) -> str:
+    """``value`` as a FANUC controller prints it: to 0.001 (mm, deg),
+    trailing zeros dropped down to ``style``'s decimals (the default keeps
+    three, as a listing and a new program write them; None drops them all,
+    as a TP program's ``PR[16,2]=(-1100.3)``), and no leading zero
+    (``.140``, ``-.4``) unless ``leading_zero``; an exact zero keeps its digit
+    (``0.000``, ``0``), as the controller writes it. Never ``-0``."""
+    s = format_number(value, FANUC_DECIMALS, old_text=style)
+    if not leading_zero and s.startswith(("0.", "-0.")) and _parse_text(s) != 0.0:
+        s = s.replace("0.", ".", 1)
+    return s
+
+
+def tp_literal(text: str) -> str:
+    """A number as a TP program's value: a negative one in parentheses,
+    ``(-1100.3)``, as the pendant writes it."""
+    return f"({text})" if text.startswith("-") else text
+
+
+class FanucStyle(Value):
+    """How a FANUC file writes a frame's numbers: ``decimals_text`` the
+    zero-padded style (``"0.000"``: three decimals kept) or None (trailing
+    zeros dropped, a TP program's ``(-1100.3)``), and ``leading_zero``."""
+
+    __slots__ = ("decimals_text", "leading_zero")
+
+    def __init__(self, decimals_text: str | None, leading_zero: bool):
+        self.decimals_text, self.leading_zero = decimals_text, leading_zero
+
+    def number(self, value: float) -> str:
+        return fanuc_number(value, style=self.decimals_text, leading_zero=self.leading_zero)
+
+
+def is_listing(frame: Frame) -> bool:
+    """A frame of a ``.va`` listing (sysframe.va), not of a TP program."""
+    from ..parsing.fanuc import kind_of
+    return frame.document is not None and kind_of(frame.document) == "va"
+
+
+def fanuc_style(frame: Frame) -> FanucStyle:
+    """The listing's fixed three decimals without leading zero, or the
+    program's own: its six numbers' decimals where they are zero-padded
+    (``1200.000``), else none kept; a leading zero where one of them has it
+    (``0.5``), else none (``.4``, as the pendant writes)."""
+    if is_listing(frame):
+        return FanucStyle("0.000", False)
+    nums = [frame.numbers[k] for k in FANUC_KEYS if k in frame.numbers]
+    texts = [n.text.strip().lstrip("+-") for n in nums]
+    return FanucStyle(_column(nums, FANUC_DECIMALS),
+                      any(t.startswith("0.") for t in texts))
+
+
+def _wpr_error(wpr: tuple[float, float, float], q) -> float:
+    return rot.quat_angle(rot.abc_to_quat(wpr[2], wpr[1], wpr[0]), q)
+
+
+def _wpr_changes(frame: Frame, pose: Pose) -> list[Change]:
+    """W, P, R to 0.001 deg: of each angle's two neighbours at that step (and
+    its old text where that is within half a step), the three that together
+    are nearest in rotation to the target; so rounding errors that add up
+    (W and R share an axis at P = +-90) are cancelled, and an angle that did
+    not move keeps its text."""
+    nums = [frame.numbers[k] for k in ("w", "p", "r")]
+    old = tuple(n.value for n in nums)
+    step = 10.0 ** -FANUC_DECIMALS
+    half = 0.5 * step
+    try:
+        if _wpr_error(old, pose.q) <= 1e-7:
+            return []          # the same orientation (W 180 and W -180, a gimbal-lock split)
+    except ValueError:
+        pass
+    a, b, c = rot.canonical_abc(pose.abc, pose.q)
+    style = fanuc_style(frame)
+    options = []
+    for n, v in zip(nums, (c, b, a)):
+        opts = []
+        if abs(rot.wrap180(v - n.value)) <= half:
+            opts.append((None, n.value))
+        for k in sorted({math.floor(round(v / step, 6)), math.ceil(round(v / step, 6))}):
+            val = round(k * step, FANUC_DECIMALS) + 0.0
+            if abs(val) <= 180.0:
+                opts.append((style.number(val), val))
+        options.append(opts)
+    best = min(itertools.product(*options),
+               key=lambda combo: (round(_wpr_error(tuple(o[1] for o in combo), pose.q), 9),
+                                  sum(o[0] is not None for o in combo)))
+    out = []
+    for key, n, (text, val) in zip("wpr", nums, best):
+        if text is not None and text != n.written and _parse_text(text) != n.value:
+            out.append(Change(key, n.written, text, n.value, _parse_text(text), n))
+    return out
+
+
+def fanuc_edit(text: str, n: Number, new: str, listing: bool) -> Edit:
+    """The edit that makes ``n`` read ``new``. In a listing, the field keeps
+    its width: the number stays right-aligned where it ended, the blanks
+    after the ``X:`` take up the difference (at least one stays). In a TP
+    program, the value keeps the program's form: a negative number in
+    parentheses (added where the old value had none; a positive value
+    drops the pair the old negative one had), deeper parentheses kept."""
+    start, end = n.span.start, n.span.end
+    if listing:
+        b = start
+        while b > 0 and text[b - 1] in " \t":
+            b -= 1
+        width = end - b
+        blanks = max(1 if b < start else 0, width - len(new))
+        return Edit(Span(b, end), " " * blanks + new)
+    wrapped = (start > 0 and text[start - 1] == "(" and end < len(text) and text[end] == ")")
+    if wrapped and not (start > 1 and text[start - 2] == "("):
+        return Edit(Span(start - 1, end + 1), tp_literal(new))
+    if wrapped:
+        return Edit(n.span, new)           # ((-29)): the inner number only
+    return Edit(n.span, tp_literal(new))
+
+
+LISTING_WARNING = ("the controller does not load .va files: this copy of the listing is for "
+                   "review (a TP program sets the frame: `ucsio patch PROGRAM.ls` or "
+                   "`ucsio program`)")
+
+
+def _frame_col(frame: Frame) -> int:
+    """The column of a program's UFRAME/UTOOL on its line (1 where not found)."""
+    doc = frame.document
+    if doc is None or not 0 < frame.line <= len(doc.line_starts):
+        return 1
+    start = doc.line_starts[frame.line - 1]
+    line = doc.text[start:start + 300].split("\n", 1)[0].upper()
+    at = line.find(frame.type)
+    return at + 1 if at >= 0 else 1
+
+
+def program_frames(cf: ControllerFile, frame: Frame) -> list[Frame]:
+    """The assignments of ``frame`` in a TP program that ``patch`` rewrites:
+    each ``UFRAME[k]=PR[n]`` of that name, whose six values stand as literal
+    ``PR[n,i]=`` lines above it that no other frame reads. Refused (file:
+    line:col): a frame whose values the program does not write as literals
+    (``PR[n]=LPOS`` alone, an indirect index, ``PR[n,i]=R[3]``, a component
+    zeroed by ``LPOS-LPOS`` with no line of its own), a ``PR[n,i]=`` line
+    another frame reads too, a frame set twice with different values."""
+    same = [f for f in cf.frames if f.name.casefold() == frame.name.casefold()]
+    first = same[0]
+    for f in same[1:]:
+        if not poses_equal(f.pose, first.pose):
+            raise UcsioError(f"{f.name} is set twice in this program, with different values "
+                             f"(lines {first.line} and {f.line}): ucsio does not choose one; "
+                             "edit the program by hand", file=f.file, line=f.line,
+                             col=_frame_col(f))
+    for f in same:
+        where = {"file": f.file, "line": f.line, "col": _frame_col(f)}
+        source = f.info.get("set_from", "its source")
+        why = next((lint.message for lint in cf.lints
+                    if lint.code == "not-literal" and lint.line == f.line), None)
+        if f.pose is None or why is not None:
+            why = (why or f"{f.name}: its values are not literal").replace(
+                "; listed without values", "")
+            raise UcsioError(f"{why}: no literal PR[n,i]= values to replace (`ucsio program` "
+                             "writes a program that sets it)", **where)
+        missing = [k.upper() for k in FANUC_KEYS if k not in f.numbers]
+        if missing:
+            raise UcsioError(f"{f.name}: {source} {' '.join(missing)} "
+                             f"{'is' if len(missing) == 1 else 'are'} 0 from LPOS-LPOS (or "
+                             f"{source}-{source}) with no {source[:-1]},i]= line of "
+                             f"{'its' if len(missing) == 1 else 'their'} own above line "
+                             f"{f.line}: nothing to replace (add the lines, or use "
+                             "`ucsio program`)", **where)
+        mine = {n.span.start for n in f.numbers.values()}
+        for g in cf.frames:
+            if g.name.casefold() == f.name.casefold() or not g.numbers:
+                continue
+            shared = sorted(mine & {n.span.start for n in g.numbers.values()})
+            if shared:
+                line, col = cf.document.line_col(shared[0])
+                raise UcsioError(f"{f.name}: the {source} value on line {line} also sets "
+                                 f"{g.name} (line {g.line}): patching it would move {g.name} "
+                                 "too; give each frame its own PR[n,i]= lines",
+                                 file=f.file, line=line, col=col)
+    return same
 
 
 # ----------------------------------------------------------------- refusals
@@ -629,11 +832,23 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     (``verify(result, parsed=...)``, as ``batch`` does) passes False.
     ``load``: how sibling modules are read for the shared-PERS check
     (``shared_declarations``)."""
-    frame = find_frame(cf, resolve_name(name, oframe))
+    warnings: list[str] = []
+    same: list[Frame] = []
+    if cf.vendor == "fanuc" and cf.extra.get("kind") == "program":
+        found = cf.matches(resolve_name(name, oframe))
+        if found and len({f.name.casefold() for f in found}) == 1:
+            same = program_frames(cf, found[0])     # set twice alike: every assignment
+    frame = same[0] if same else find_frame(cf, resolve_name(name, oframe))
     where = {"file": frame.file, "line": frame.line}
     if frame.vendor == "fanuc":
-        raise UcsioError(f"{frame.name}: ucsio reads FANUC files but does not write them yet",
-                         col=1, **where)
+        where["col"] = _frame_col(frame)
+        kind = cf.extra.get("kind")
+        if kind == "sysframe":
+            warnings.append(LISTING_WARNING)
+        elif kind != "program":
+            raise UcsioError(f"{frame.name}: a {kind or 'FANUC'} listing is not written back; "
+                             "patch the TP program that sets the frame (or sysframe.va, for a "
+                             "reviewed copy)", **where)
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
                          f"{frame.info.get('ufmec')!r}): the controller sets it; not patchable",
@@ -644,7 +859,6 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     if frame.pose is None or not frame.numbers:
         raise UcsioError(f"{frame.name}: the file gives no literal value for this frame; "
                          "nothing to patch", **where)
-    warnings: list[str] = []
     if measured:
         pose = measured_in_parent(cf, frame, pose)
         why = reference_problem(cf, frame)
@@ -674,11 +888,13 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
             if not force:
                 raise UcsioError(msg + " (--force patches this file only)", **where)
             warnings.append(msg + " (patched this file only: --force)")
-    if translation_only:      # a solved TCP: x, y, z; the orientation stays as written
-        plan(frame, pose)     # the refusals: a component with no literal value
-        changes = _translation_changes(frame, pose, point=frame.vendor == "kuka")
-    else:
-        changes = plan(frame, pose)
+    changes = []
+    for f in same or [frame]:         # a program that sets the frame twice, alike: both
+        if translation_only:      # a solved TCP: x, y, z; the orientation stays as written
+            plan(f, pose)     # the refusals: a component with no literal value
+            changes += _translation_changes(f, pose, point=f.vendor == "kuka")
+        else:
+            changes += plan(f, pose)
     doc = cf.document
     new_bytes = doc.edited_bytes(edits_for(frame, changes))
     result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
@@ -691,7 +907,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
 def robot_held_tool(frame: Frame) -> bool:
     """A TCP in flange coordinates lives here: an ABB tooldata with robhold
     TRUE, a KUKA TOOL_DATA used as a tool (not a robot-guided workpiece)."""
-    return (frame.type in ("tooldata", "TOOL_DATA") and frame.reference == "flange"
+    return (frame.type in ("tooldata", "TOOL_DATA", "UTOOL") and frame.reference == "flange"
             and frame.info.get("robhold") is not False
             and frame.info.get("role", "tool") == "tool")
 
@@ -719,9 +935,11 @@ def reads_back(frame: Frame | None, pose: Pose) -> bool:
     written precision. Only components that were kept (unchanged at the
     written precision) may differ, and by at most half a step."""
     p = frame.pose if frame is not None else None
+    angle = READBACK_FANUC_ANGLE_DEG if frame is not None and frame.vendor == "fanuc" \
+        else READBACK_ANGLE_DEG
     return (p is not None
             and all(abs(a - b) <= READBACK_TRANS for a, b in zip(p.t, pose.t))
-            and rot.quat_angle(p.q, pose.q) <= READBACK_ANGLE_DEG)
+            and rot.quat_angle(p.q, pose.q) <= angle)
 
 
 def _reread_declaration(result: PatchResult) -> Frame | None:
@@ -733,6 +951,8 @@ def _reread_declaration(result: PatchResult) -> Frame | None:
     read back (a declaration that spans other ones, an array element, an
     odd line ending): then ``verify`` parses the whole file as before."""
     doc, frame = result.document, result.frame
+    if frame.vendor == "fanuc":
+        return None         # a program's PR lines stand above the frame's: the whole file
     old, new = doc.text, Document(result.new_bytes, doc.path).text
     edits = sorted(edits_for(frame, result.changes), key=lambda e: e.span.start)
     pos_old = pos_new = 0
@@ -767,6 +987,17 @@ def _reread_declaration(result: PatchResult) -> Frame | None:
     return again if reads_back(again, result.pose) else None
 
 
+def _read_again(cf: ControllerFile, frame: Frame) -> Frame:
+    """``frame`` in the patched text; a TP program that sets it twice, alike:
+    the assignment that reads back worst (each must give the target)."""
+    if frame.vendor == "fanuc":
+        found = [f for f in cf.frames if f.name.casefold() == frame.name.casefold()]
+        if len(found) > 1:
+            bad = [f for f in found if f.pose is None or not poses_equal(f.pose, found[0].pose)]
+            return bad[0] if bad else found[0]
+    return cf.frame(frame.name)
+
+
 def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None:
     """Parse the new bytes again: the frame must read back as the target pose
     within the written precision (``reads_back``), and nothing outside its
@@ -782,11 +1013,11 @@ def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None
         return
     try:
         if parsed is not None:
-            again = parsed.frame(frame.name)
+            again = _read_again(parsed, frame)
         else:
             again = _reread_declaration(result)
             if again is None:   # the declaration alone did not read back: the whole file
-                again = parse(Document(result.new_bytes, doc.path)).frame(frame.name)
+                again = _read_again(parse(Document(result.new_bytes, doc.path)), frame)
     except UcsioError as exc:
         raise UcsioError(f"internal error: the patched text does not parse back: {exc}",
                          file=doc.path) from None
@@ -824,6 +1055,10 @@ def save(result: PatchResult, path: str | os.PathLike | None = None,
     changed on disk since it was read; on any failure no file changes, the
     backup included."""
     src = result.document.path
+    if path is None and result.frame.vendor == "fanuc" and is_listing(result.frame):
+        raise UcsioError("a .va listing is the controller's record of its frames, and the "
+                         "controller does not load it: not patched in place; -o OUT writes a "
+                         "reviewed copy", file=src)
     target = write_target(path if path is not None else src)
 
     def unchanged() -> None:
