@@ -40,7 +40,8 @@ from .output import _clean, versioned
 from .parsing.controller import ControllerFile
 from .parsing.controller import load as _load
 from .results import (BackupsDiff, BatchOutput, CheckResult, DemoResult, DiffResult, FilesDiff,
-                      FramesResult, PatchOutput, PlanResult, Result, SolveResult, TaughtPoints)
+                      FramesResult, PatchOutput, PlanResult, ProgramOutput, Result, SolveResult,
+                      TaughtPoints)
 from .review.patch import PatchResult
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -306,6 +307,38 @@ def save(result: PatchOutput | PatchResult, path: PathLike | None = None,
     return written
 
 
+def program(solution: Any, frame: str, *, group: int | None = None, pr: int | None = None,
+            posreg: PathLike | None = None, comment: str | None = None,
+            wpr: str | Sequence[float] | None = None,
+            output: PathLike | None = None) -> ProgramOutput:
+    """``ucsio program --json``: a FANUC TP program that sets ``frame``
+    (``UF3``, ``UT2``, ``UF3@2``) to a measured ``solution`` (a solve
+    result, a SOLUTION.json's path, or its data; ``UTk``: its solved TCP,
+    with the tool's ``wpr``, default 0, 0, 0). ``pr``: the position
+    register, else the highest one ``posreg`` (a posreg.va) shows unused.
+    ``comment``: ``UFRAME[k:comment]``. The program is read back through
+    ucsio's TP grammar before it is returned (``out.text``, CRLF); with
+    ``output`` it is also written there (atomically; its file name is the
+    program's name)."""
+    from .commands import program as command
+    from .review.program import save as _save
+    if isinstance(solution, (str, os.PathLike)):
+        data: Any = os.fspath(solution)
+    elif isinstance(solution, dict):
+        data = solution
+    elif hasattr(solution, "as_dict"):
+        data = solution.as_dict()
+    else:
+        raise TypeError(f"not a solution: {solution!r}")
+    angles = None if wpr is None else wpr if isinstance(wpr, str) else tuple(wpr)
+    made = command.make(data, frame, group=group, pr=pr,
+                        posreg=None if posreg is None else os.fspath(posreg), comment=comment,
+                        wpr=angles, output=None if output is None else os.fspath(output))
+    if output is not None:
+        _save(made, os.fspath(output))
+    return _document(ProgramOutput, command.document(made))
+
+
 def batch(manifest: PathLike, *, uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
           seed: int = 0, patch_dir: PathLike | None = None, csv: PathLike | None = None,
@@ -368,4 +401,5 @@ def demo(out: PathLike | None = None, tolerance: float | None = None) -> DemoRes
 
 __all__ = ["load", "frame", "frames", "check", "solve", "save_solution", "read_solution",
            "as_pose", "diff_frame", "taught_points", "diff_files", "diff_backups", "patch",
+           "program",
            "save", "batch", "plan", "textconv", "demo", "PatchResult"]

@@ -593,6 +593,47 @@ class PatchOutput(Result):
         return self.patch.warnings
 
 
+class ProgramValues(Result):
+    """The frame as the program sets it: ``x y z`` (mm), FANUC ``w p r`` (deg)."""
+    x: float
+    y: float
+    z: float
+    w: float
+    p: float
+    r: float
+
+
+class ProgramInfo(Result):
+    """A FANUC TP program that sets a frame: its ``text`` (CRLF), ``name``
+    (/PROG), the ``frame`` (UF3, UT2, UF3@2) with its ``type`` (UFRAME,
+    UTOOL), ``number`` and ``group``, the register ``pr`` and ``pr_from``
+    ("--pr" or the posreg.va it was found unused in), the ``comment``, the
+    ``pose`` it reads back as (``x y z w p r``), ``warnings``, and the ``file`` written
+    (None on standard output)."""
+    file: str | None
+    name: str
+    frame: str
+    type: str
+    number: int
+    group: int
+    pr: int
+    pr_from: str
+    comment: str | None
+    pose: ProgramValues
+    warnings: list[str]
+    text: str
+
+
+class ProgramOutput(Result):
+    """``ucsio program --json``: ``program``; ``text`` is the program."""
+    schema_version: int
+    program: ProgramInfo
+
+    @property
+    def text(self) -> str:
+        return self.program.text
+
+
 # ------------------------------------------------------------------ batch
 
 class BatchDelta(_Passes):

@@ -388,38 +388,44 @@ def _wpr_error(wpr: tuple[float, float, float], q) -> float:
     return rot.quat_angle(rot.abc_to_quat(wpr[2], wpr[1], wpr[0]), q)
 
 
-def _wpr_changes(frame: Frame, pose: Pose) -> list[Change]:
-    """W, P, R to 0.001 deg: of each angle's two neighbours at that step (and
-    its old text where that is within half a step), the three that together
-    are nearest in rotation to the target; so rounding errors that add up
-    (W and R share an axis at P = +-90) are cancelled, and an angle that did
-    not move keeps its text."""
-    nums = [frame.numbers[k] for k in ("w", "p", "r")]
-    old = tuple(n.value for n in nums)
+def wpr_to_write(pose: Pose, olds: tuple[float, float, float] | None = None,
+                 number=None) -> list[tuple[str | None, float]]:
+    """W, P, R of ``pose`` to 0.001 deg, each as (text, value): of each
+    angle's two neighbours at that step (and its old value ``olds``, text
+    None, where that is within half a step), the three that together are
+    nearest in rotation to ``pose``; so rounding errors that add up (W and R
+    turn about one axis at P = +-90) cancel instead. ``number`` writes a
+    value (``fanuc_number``)."""
+    number = number or fanuc_number
     step = 10.0 ** -FANUC_DECIMALS
     half = 0.5 * step
-    try:
-        if _wpr_error(old, pose.q) <= 1e-7:
-            return []          # the same orientation (W 180 and W -180, a gimbal-lock split)
-    except ValueError:
-        pass
     a, b, c = rot.canonical_abc(pose.abc, pose.q)
-    style = fanuc_style(frame)
     options = []
-    for n, v in zip(nums, (c, b, a)):
-        opts = []
-        if abs(rot.wrap180(v - n.value)) <= half:
-            opts.append((None, n.value))
+    for i, v in enumerate((c, b, a)):
+        opts: list[tuple[str | None, float]] = []
+        if olds is not None and abs(rot.wrap180(v - olds[i])) <= half:
+            opts.append((None, olds[i]))
         for k in sorted({math.floor(round(v / step, 6)), math.ceil(round(v / step, 6))}):
             val = round(k * step, FANUC_DECIMALS) + 0.0
             if abs(val) <= 180.0:
-                opts.append((style.number(val), val))
+                opts.append((number(val), val))
         options.append(opts)
     best = min(itertools.product(*options),
                key=lambda combo: (round(_wpr_error(tuple(o[1] for o in combo), pose.q), 9),
                                   sum(o[0] is not None for o in combo)))
+    return list(best)
+
+
+def _wpr_changes(frame: Frame, pose: Pose) -> list[Change]:
+    """W, P, R to 0.001 deg (``wpr_to_write``); an angle that did not move
+    keeps its text, and an unchanged orientation (W 180 for W -180, another
+    gimbal-lock split) keeps all three."""
+    nums = [frame.numbers[k] for k in ("w", "p", "r")]
+    old = (nums[0].value, nums[1].value, nums[2].value)
+    if _wpr_error(old, pose.q) <= 1e-7:
+        return []
     out = []
-    for key, n, (text, val) in zip("wpr", nums, best):
+    for key, n, (text, _val) in zip("wpr", nums, wpr_to_write(pose, old, fanuc_style(frame).number)):
         if text is not None and text != n.written and _parse_text(text) != n.value:
             out.append(Change(key, n.written, text, n.value, _parse_text(text), n))
     return out
