@@ -238,6 +238,7 @@ COMMAND_FUNCTIONS = {           # the command, its work, the api function
     "solve": ("ucsio.commands.solve", "solve", "solve"),
     "batch": ("ucsio.commands.batch", "batch", "batch"),
     "plan": ("ucsio.commands.plan", "plan_measurement", "plan"),
+    "program": ("ucsio.commands.program", "make", "program"),
 }
 CLI_ONLY = {"json", "output", "no_progress", "command", "_module", "help"}
 
@@ -294,3 +295,21 @@ def test_fanuc_files_and_backups(tmp_path):
     d = api.diff_backups(old, new)
     same(d, "diff", old, new)
     assert [x.not_read for x in d.files_added if x.path == "NUMREG.VR"][0]
+
+
+def test_program(demo, monkeypatch, tmp_path):
+    """api.program is ``ucsio program --json``; with ``output`` it writes the
+    program there, as -o does."""
+    monkeypatch.chdir(demo / "R02_abb")
+    out = api.program("solution.json", "UF3", pr=90, comment="FIXTURE")
+    same(out, "program", "solution.json", "--frame", "UF3", "--pr", "90", "--comment", "FIXTURE")
+    sol = api.read_solution("solution.json")
+    assert out.program.pose.x == pytest.approx(sol.x, abs=5e-4)
+    assert "UFRAME[3:FIXTURE]=PR[90] ;\r\n" in out.text
+    target = tmp_path / "SET_UF3.LS"
+    written = api.program(api.solve("table_points.csv", tool="CellR02.mod:tReflector"), "UF3",
+                          pr=90, output=target)
+    assert written.program.file == str(target) and target.read_bytes() == \
+        written.text.encode("ascii")
+    with pytest.raises(UcsioError, match="TCP was solved"):
+        api.program("solution.json", "UT1", pr=90)

@@ -25,7 +25,7 @@ from ucsio.output import SCHEMA_VERSION
 
 SCHEMAS = ROOT / "docs" / "schema"
 NAMES = ("frames", "check", "finding", "solve", "solution", "diff-frame", "diff-files",
-         "diff-backups", "patch", "batch", "plan", "demo", "error")
+         "diff-backups", "patch", "program", "batch", "plan", "demo", "error")
 
 
 def schema(name: str) -> dict:
@@ -319,6 +319,22 @@ def test_patch(demo, tmp_path):
     assert d["patch"]["written"] == str(out)
 
 
+def test_program(demo, tmp_path):
+    """UF3 from the ABB cell's measured frame, to stdout and to a file; UT2
+    from the R03 cell's solved TCP."""
+    d = doc_of("program", "solution.json", "--frame", "UF3", "--pr", "90", "--comment",
+               "FIXTURE", "--json", cwd=demo / "R02_abb")
+    check_version(d)
+    validate("program", d)
+    assert d["program"]["file"] is None and d["program"]["text"].endswith("/END\r\n")
+    out = tmp_path / "SET_UT2.LS"
+    d = doc_of("program", "solution.json", "--frame", "UT2@2", "--pr", "7", "-o", out, "--json",
+               cwd=demo / "R03_kuka")
+    validate("program", d)
+    assert d["program"]["file"] == str(out) and d["program"]["group"] == 2
+    assert d["program"]["warnings"]         # W, P, R written as 0
+
+
 def test_batch_on_the_fleet(tmp_path):
     spec = importlib.util.spec_from_file_location("make_fleet",
                                                   FIXTURES / "fleet" / "make_fleet.py")
@@ -462,10 +478,15 @@ def test_fanuc_frames_check_and_diffs(demo, tmp_path):
                codes=(1,))                           # the demo frame is far from UF1
     validate("diff-frame", d)
     assert d["vendor"] == "fanuc" and d["points_warnings"]     # taught /POS not read yet
-    # FANUC is not written yet: the refusal is the error object
-    code, out = run("patch", files[0], "--frame", "UF1", "--measured", sol, "--json")
+    # a reviewed copy of the listing: the patch document, saying the controller won't load it
+    d = doc_of("patch", files[0], "--frame", "UF1", "--measured", sol, "--json")
+    validate("patch", d)
+    assert d["patch"]["vendor"] == "fanuc" and "does not load .va" in d["patch"]["warnings"][0]
+    # a program frame with no literal values: the refusal is the error object
+    code, out = run("patch", files[2], "--frame", "UT3", "--measured", sol, "--json")
     assert code == 2
     validate("error", json.loads(out))
+    assert json.loads(out)["error"]["col"] == 8
 
 
 def test_a_fanuc_backup_and_its_binaries(tmp_path):
