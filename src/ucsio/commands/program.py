@@ -23,7 +23,8 @@ atomically (the program is named after OUT: SET_UF3.LS is /PROG SET_UF3).
 Before anything is written the program is read back through ucsio's TP
 grammar: the frame must give the solution within 0.001 mm and 0.001 deg.
 
-Exit 2, nothing written: a bad or rejected solution, a UTk without a solved
+Exit 1, nothing written: a rejected solution (its dataset failed the gate:
+measure again). Exit 2, nothing written: a bad solution, a UTk without a solved
 TCP, no register, a register in use, a comment the pendant cannot hold
 (16 printable ASCII characters, no [ ] : ; quotes)."""
 from __future__ import annotations
