@@ -364,3 +364,23 @@ def test_patching_fanuc_files_stays_light(tmp_path):
         seen.append(json.loads(res.stdout.strip().splitlines()[-1]))
     assert [s["code"] for s in seen] == [0] * 4
     assert seen[1]["heavy"] == [] and seen[3]["heavy"] == [], seen
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(coordinate, coordinate, coordinate, angle, pitch, angle,
+       st.sampled_from(["program_patch.ls", "sysframe_comment.va"]))
+def test_a_patch_reads_back_as_any_frame_and_changes_only_its_numbers(x, y, z, w, p, r, name):
+    """patch_frame's own read-back check passes for every frame that can be
+    written, in a program (its style) and in a listing (its widths); only
+    the frame's lines change."""
+    from ucsio.review.patch import patch_frame
+    raw = (FANUC / name).read_bytes()
+    cf = parse(Document(raw, str(FANUC / name)))
+    target = Pose.from_wpr(x, y, z, w, p, r)
+    result = patch_frame(cf, "UF1", target)
+    again = parse(Document(result.new_bytes, str(FANUC / name))).frame("UF1")
+    close(again, target)
+    lines = {n for n, _, _ in changed_lines(raw, result.new_bytes)}
+    allowed = {3 + 8, 4 + 8, 5 + 8, 6 + 8, 7 + 8, 8 + 8} if name.endswith(".ls") else \
+        {cf.frame("UF1").line + 2, cf.frame("UF1").line + 3}
+    assert lines <= allowed, (lines, allowed)
