@@ -53,7 +53,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                     help="working points: CSV of point, x, y, z in the UCS (mm)")
     at.add_argument("--at-taught", metavar="CONTROLLER", default=None,
                     help="working points: the positions taught in --frame in this controller "
-                         "file (its tree or folder is searched, as diff --points does)")
+                         "file (its tree or folder is searched, as diff --points does), or a "
+                         "backup folder holding one sysframe.va or $config.dat")
     p.add_argument("--frame", metavar="NAME", default=None,
                    help="with --at-taught: the frame the positions are taught in (the UCS)")
     p.add_argument("--candidates", metavar="FILE", default=None,
@@ -141,8 +142,10 @@ def taught_points(controller: str, name: str):
     from ..parsing.backup import load_one
     from ..readers.points import Points
     from ..review.names import find_frame
-    from ..taught import find_points, in_ucs
+    from ..taught import find_points, frames_file_in, in_ucs
 
+    if os.path.isdir(controller):       # a backup folder: its sysframe.va or $config.dat
+        controller = frames_file_in(controller)
     cf = load_one(controller)
     frame = find_frame(cf, name)
     found = find_points(cf, frame)
