@@ -69,7 +69,10 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
             cache[key] = tp.positions(doc)
         return cache[key]
 
-    for src in files_around(frame.file, backup_root, (".ls",)):
+    # the .va too: another robot's sysframe.va below ours marks its tree (left out)
+    for src in files_around(frame.file, backup_root, (".ls", ".va")):
+        if not src.name.lower().endswith(".ls"):
+            continue
         try:
             doc = cf.document if is_same_file(src, cf) else src.document()
             points_in(doc, uf, group, found, read)
