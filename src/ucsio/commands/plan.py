@@ -31,14 +31,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("planned flange poses (for --tcp solve)")
     g.add_argument("--robot", metavar="FILE", default=None,
                    help="the measurement program's poses: SPEC CSV, KUKA .dat, ABB module, "
-                        "paired with the plan's points by name (as solve --robot)")
+                        "FANUC .ls or posreg.va, paired with the plan's points by name (as "
+                        "solve --robot)")
     g.add_argument("--config", metavar="FILE", default=None,
                    help="KUKA $config.dat for TOOL_NO/BASE_NO; ABB: a module declaring "
-                        "--robot-tool/--robot-wobj")
+                        "--robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT")
     g.add_argument("--robot-tool", metavar="NAME", default="tool0",
-                   help="ABB: the tool the robtargets are taught with (default tool0)")
+                   help="ABB: the tool the robtargets are taught with (default tool0); "
+                        "FANUC posreg.va: the registers' tool frame, UTk")
     g.add_argument("--robot-wobj", metavar="NAME", default="wobj0",
-                   help="ABB: the work object the robtargets are in (default wobj0)")
+                   help="ABB: the work object the robtargets are in (default wobj0); FANUC "
+                        "posreg.va: the registers' user frame, UFk")
     g.add_argument("--map", metavar="FILE", default=None,
                    help="CSV of plan,robot name pairs for points whose names differ")
     src = p.add_mutually_exclusive_group()
