@@ -188,7 +188,8 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
     from ..parsing.document import Document
     from ..parsing.tp import positions
 
-    if not (_default(tool, "tool0") and _default(wobj, "wobj0")):
+    if tool.strip().casefold() not in ("tool0", "ut0") or \
+            wobj.strip().casefold() not in ("wobj0", "uf0"):
         raise UcsioError("--robot-tool and --robot-wobj name the frames of posreg.va's "
                          "registers (or ABB's); a TP program's positions give their own UF "
                          "and UT", file=path)
@@ -250,7 +251,7 @@ def fanuc_registers(path: str, config: str | None, tool: str = "tool0",
         rp = RobotPose(name, comment or f"PR{n}", line, col, None, note=note,
                        aliases=(f"PR{n}",) if comment else ())
         poses.append(rp)
-        values = {k: c for k, c in e.coords.items()}
+        values = e.coords
         why = _not_cartesian(values, e.joints)
         if why:
             rp.problem = doc.error(f"{name}: {why}", pos)
@@ -273,10 +274,6 @@ def _not_cartesian(values: dict, joint: bool) -> str | None:
     return None
 
 
-def _default(text: str, default: str) -> bool:
-    return text.strip().casefold() in (default, default[:-1] + "0")
-
-
 def _frame_number(text: str, default: str, prefix: str, opt: str, what: str) -> int:
     """--robot-wobj UF2 -> 2 (the default tool0/wobj0, UF0, UT0 -> 0)."""
     t = text.strip()
@@ -285,8 +282,9 @@ def _frame_number(text: str, default: str, prefix: str, opt: str, what: str) -> 
     head, digits = t[:2], t[2:]
     if head.upper() == prefix and digits.isdigit() and len(digits) < 6:
         return int(digits)
+    zero = "world" if prefix == "UF" else "the faceplate"
     raise UcsioError(f"{opt} {text}: for a FANUC posreg.va, the {what} the registers were "
-                     f"taken in, {prefix}k ({prefix}0: {'world' if prefix == 'UF' else 'the faceplate'})")
+                     f"taken in, {prefix}k ({prefix}0: {zero})")
 
 
 class _FanucFrames:

@@ -218,8 +218,9 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
     worst first) and ``points_moved`` (``count``, ``max``, ``mean``,
     ``worst``: the name of the point that moves most), with the readers'
     ``points_warnings`` and ``points_skipped`` (how many positions taught
-    in the frame do not move with it: FANUC joint positions). Given the ``solution``'s JSON with its covariance,
-    the taught points are its working points: each row gets ``at_95``, the
+    in the frame do not move with it: FANUC joint positions). Given the
+    ``solution``'s JSON with its covariance, the taught points are its
+    working points: each row gets ``at_95``, the
     predicted 95 % error of the measured frame there (mm), and
     ``working_points`` / ``worst`` are SPEC's (plain math: diff imports no
     numpy)."""
