@@ -292,8 +292,11 @@ def test_one_fanuc_frame_against_a_measurement(tmp_path):
     assert d["vendor"] == "fanuc" and d["dx"] == pytest.approx(0.4)
     assert d["angle"] == pytest.approx(0, abs=1e-9) and (d["dw"], d["dp"], d["dr"]) == \
         (d["dc"], d["db"], d["da"])
+    # the positions taught in UF1: the /POS of the .ls beside it and below (tests/
+    # test_fanuc_taught.py checks the numbers); a broken program there is a warning
     res = run("diff", va, "--frame", "UF1", "--measured", sol, "--points")
-    assert res.returncode == 0 and "not read yet" in res.stderr
+    assert res.returncode == 0 and "taught points in UF1" in res.stdout
+    assert "broken_position.ls" in res.stderr and "its points are not counted" in res.stderr
 
 
 @needs_corpus

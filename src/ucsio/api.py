@@ -129,7 +129,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
     The measurement: ``measurement`` (the SPEC CSV; "-" is standard input),
     or where it lives: ``laser`` (CSV, SpatialAnalyzer export or a name x y z
     table, in ``laser_units``) and ``robot`` (CSV, KUKA .dat with its
-    ``config`` $config.dat, ABB module with ``robot_tool``/``robot_wobj``),
+    ``config`` $config.dat, ABB module with ``robot_tool``/``robot_wobj``,
+    FANUC .ls or posreg.va with its ``config`` sysframe.va),
     paired by name (``map``: a CSV of laser,robot name pairs).
     The TCP (the reflector in flange coordinates, mm; no default): ``tcp``
     as three numbers or "X,Y,Z", ``tcp="solve"`` to solve it with the frame,
@@ -229,9 +230,11 @@ def taught_points(file: PathLike | ControllerFile, frame: str, solution: Any,
                   oframe: bool = False) -> TaughtPoints:
     """What ``diff --points`` adds: the positions taught in ``frame`` (KUKA
     E6POS/POS with its BASE_NO in the controller's tree, ABB robtargets
-    moved to with ``\\WObj``), each with ``moved`` (mm, in world, when the
+    moved to with ``\\WObj``, FANUC /POS positions with ``UF : k`` in the
+    backup's .ls programs), each with ``moved`` (mm, in world, when the
     measured frame replaces the simulated one), worst first;
-    ``points_moved`` (``count max mean worst``); ``points_warnings``; with a
+    ``points_moved`` (``count max mean worst``); ``points_warnings``;
+    ``points_skipped`` (FANUC joint positions, which do not move); with a
     solution that keeps its covariance (a solve result, a SOLUTION.json)
     each point's ``at_95`` (mm) and ``working_points``/``worst``."""
     from .commands import diff as command

@@ -408,12 +408,15 @@ class TaughtPoint(Result):
 
 class TaughtPoints(Result):
     """``diff --points``' keys (``api.taught_points``): ``points`` (worst
-    first), ``points_moved``, ``points_warnings``; with the solution's
-    covariance ``working_points`` and ``worst``."""
+    first), ``points_moved``, ``points_warnings``, ``points_skipped`` (the
+    positions taught in the frame that do not move with it: FANUC joint
+    positions); with the solution's covariance ``working_points`` and
+    ``worst``."""
     schema_version: int
     points: list[TaughtPoint]
     points_moved: PointsMoved
     points_warnings: list[str]
+    points_skipped: int
     working_points: list[WorkingPoint] | None
     worst: Worst | None
     tcp_at_95: float | None
@@ -457,6 +460,7 @@ class Diff(FrameDiff):
     points: list[TaughtPoint] | None
     points_moved: PointsMoved | None
     points_warnings: list[str] | None
+    points_skipped: int | None
     working_points: list[WorkingPoint] | None
     worst: Worst | None
 

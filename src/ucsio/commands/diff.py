@@ -46,7 +46,8 @@ def add_arguments(p) -> None:
     p.add_argument("--points", action="store_true",
                    help="also: how far each position taught in the frame moves in world "
                         "(KUKA E6POS/POS with its BASE_NO in the controller's tree, ABB "
-                        "robtargets moved to with \\WObj:=NAME in the folder's modules)")
+                        "robtargets moved to with \\WObj:=NAME in the folder's modules, FANUC "
+                        "/POS positions with UF : k in the backup's .ls programs)")
     p.add_argument("--textconv", action="store_true",
                    help="print FILE's frames one per line (git diff.<driver>.textconv)")
     p.add_argument("--exit-code", action="store_true",
@@ -224,8 +225,11 @@ def _points_text(d: dict) -> str:
     from ..taught import WORST
 
     pm = d["points_moved"]
+    skipped = d.get("points_skipped") or 0
+    tail = (f"\n{skipped} joint position{'s' if skipped != 1 else ''} taught in {d['name']} "
+            "skipped: joint values do not move with a frame" if skipped else "")
     if not pm["count"]:
-        return f"taught points in {d['name']}: none found"
+        return f"taught points in {d['name']}: none found" + tail
     head = (f"taught points in {d['name']}: {pm['count']}, moved in world by max "
             f"{pm['max']:.3f} mm (worst {pm['worst']}), mean {pm['mean']:.3f} mm")
     rows = d["points"][:WORST]
@@ -239,4 +243,4 @@ def _points_text(d: dict) -> str:
         w = d["worst"]
         text += (f"\nthe measured frame is known within {w['at_95']:.3f} mm (95 %) at its "
                  f"taught points (worst {w['name']}, {w['file']}:{w['line']})")
-    return text
+    return text + tail

@@ -31,14 +31,17 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("planned flange poses (for --tcp solve)")
     g.add_argument("--robot", metavar="FILE", default=None,
                    help="the measurement program's poses: SPEC CSV, KUKA .dat, ABB module, "
-                        "paired with the plan's points by name (as solve --robot)")
+                        "FANUC .ls or posreg.va, paired with the plan's points by name (as "
+                        "solve --robot)")
     g.add_argument("--config", metavar="FILE", default=None,
                    help="KUKA $config.dat for TOOL_NO/BASE_NO; ABB: a module declaring "
-                        "--robot-tool/--robot-wobj")
+                        "--robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT")
     g.add_argument("--robot-tool", metavar="NAME", default="tool0",
-                   help="ABB: the tool the robtargets are taught with (default tool0)")
+                   help="ABB: the tool the robtargets are taught with (default tool0); "
+                        "FANUC posreg.va: the registers' tool frame, UTk")
     g.add_argument("--robot-wobj", metavar="NAME", default="wobj0",
-                   help="ABB: the work object the robtargets are in (default wobj0)")
+                   help="ABB: the work object the robtargets are in (default wobj0); FANUC "
+                        "posreg.va: the registers' user frame, UFk")
     g.add_argument("--map", metavar="FILE", default=None,
                    help="CSV of plan,robot name pairs for points whose names differ")
     src = p.add_mutually_exclusive_group()
@@ -53,7 +56,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                     help="working points: CSV of point, x, y, z in the UCS (mm)")
     at.add_argument("--at-taught", metavar="CONTROLLER", default=None,
                     help="working points: the positions taught in --frame in this controller "
-                         "file (its tree or folder is searched, as diff --points does)")
+                         "file (its tree or folder is searched, as diff --points does), or a "
+                         "backup folder holding one sysframe.va or $config.dat")
     p.add_argument("--frame", metavar="NAME", default=None,
                    help="with --at-taught: the frame the positions are taught in (the UCS)")
     p.add_argument("--candidates", metavar="FILE", default=None,
@@ -141,8 +145,10 @@ def taught_points(controller: str, name: str):
     from ..parsing.backup import load_one
     from ..readers.points import Points
     from ..review.names import find_frame
-    from ..taught import find_points, in_ucs
+    from ..taught import find_points, frames_file_in, in_ucs
 
+    if os.path.isdir(controller):       # a backup folder: its sysframe.va or $config.dat
+        controller = frames_file_in(controller)
     cf = load_one(controller)
     frame = find_frame(cf, name)
     found = find_points(cf, frame)

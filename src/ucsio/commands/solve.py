@@ -71,14 +71,17 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
                    help="units of the laser file's coordinates (default mm)")
     g.add_argument("--robot", metavar="FILE", default=None,
                    help="flange poses: SPEC CSV (robot_* columns), a KUKA program .dat "
-                        "(E6POS/POS/FRAME with FDAT) or an ABB module (robtargets)")
+                        "(E6POS/POS/FRAME with FDAT), an ABB module (robtargets), a FANUC TP "
+                        "program .ls (/POS) or posreg.va")
     g.add_argument("--config", metavar="FILE", default=None,
                    help="KUKA $config.dat for the positions' TOOL_NO/BASE_NO; ABB: a module "
-                        "declaring --robot-tool/--robot-wobj")
+                        "declaring --robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT")
     g.add_argument("--robot-tool", metavar="NAME", default="tool0",
-                   help="ABB: the tool the robtargets were taught with (default tool0)")
+                   help="ABB: the tool the robtargets were taught with (default tool0); "
+                        "FANUC posreg.va: the registers' tool frame, UTk")
     g.add_argument("--robot-wobj", metavar="NAME", default="wobj0",
-                   help="ABB: the work object the robtargets are in (default wobj0)")
+                   help="ABB: the work object the robtargets are in (default wobj0); FANUC "
+                        "posreg.va: the registers' user frame, UFk")
     g.add_argument("--map", metavar="FILE", default=None,
                    help="CSV of laser,robot name pairs for points whose names differ")
 

@@ -781,7 +781,8 @@ def _taught_points(results: list[EntryResult], frames: dict) -> None:
         except UcsioError as exc:
             r.points_error = str(exc)
             continue
-        r.points_moved = dict(got["points_moved"], warnings=got["points_warnings"])
+        r.points_moved = dict(got["points_moved"], warnings=got["points_warnings"],
+                              skipped=got["points_skipped"])
 
 
 def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch_dir: str,

@@ -328,13 +328,22 @@ class PointGroup(Value):
     """One motion group of a taught point: ``uf``/``ut`` the frames it was
     taught in, ``config`` ('N U T, 0, 0, 0', None for joints), ``values``
     {axis (X..R, J1.., E1..): Number, or None for ********} and their
-    ``units`` (mm, deg)."""
+    ``units`` (mm, deg); ``at``, ``uf_at``, ``ut_at``: the offsets of its
+    ``GPn``, and of the UF and UT numbers (for file:line:col)."""
 
-    __slots__ = ("group", "uf", "ut", "config", "values", "units", "line")
+    __slots__ = ("group", "uf", "ut", "config", "values", "units", "line", "at", "uf_at",
+                 "ut_at")
 
-    def __init__(self, group, uf, ut, config, values, units, line):
+    def __init__(self, group, uf, ut, config, values, units, line, at=None, uf_at=None,
+                 ut_at=None):
         self.group, self.uf, self.ut, self.config = group, uf, ut, config
         self.values, self.units, self.line = values, units, line
+        self.at, self.uf_at, self.ut_at = at, uf_at, ut_at
+
+    @property
+    def joint(self) -> bool:
+        """Joint values (J1 = ...), not X Y Z W P R."""
+        return any(k.startswith("J") for k in self.values)
 
     @property
     def cartesian(self) -> bool:
@@ -351,12 +360,14 @@ class PointGroup(Value):
 
 
 class Point(Value):
-    """A position of /POS: ``P[12]`` with its comment and its groups."""
+    """A position of /POS: ``P[12]`` with its comment and its groups
+    ({group number: PointGroup}); ``at`` the offset of its ``P``."""
 
-    __slots__ = ("number", "comment", "line", "groups")
+    __slots__ = ("number", "comment", "line", "groups", "at")
 
-    def __init__(self, number, comment, line, groups):
+    def __init__(self, number, comment, line, groups, at=None):
         self.number, self.comment, self.line, self.groups = number, comment, line, groups
+        self.at = at
 
     @property
     def name(self) -> str:
@@ -388,7 +399,8 @@ def _positions(doc: Document, pos: Tree) -> list[Point]:
             elif c.type == "POINT_COMMENT":
                 comment = c.value[1:].strip()[1:-1]
         number = int(ch[1].value) if len(ch[1].value) < 10 else -1
-        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups))
+        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups,
+                         ch[0].start_pos))
     return out
 
 
@@ -407,4 +419,4 @@ def _point_group(doc: Document, node: Tree) -> PointGroup:
                        Number(Span(value.start_pos, value.end_pos), value.value, float(value.value)))
         units[key] = unit.value
     return PointGroup(int(gp.value[2:]), int(uf.value), int(ut.value), config, values, units,
-                      doc.line_of(gp.start_pos))
+                      doc.line_of(gp.start_pos), gp.start_pos, uf.start_pos, ut.start_pos)

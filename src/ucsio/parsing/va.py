@@ -526,13 +526,19 @@ def position_registers(doc: Document) -> dict:
     """posreg.va's registers: {(group, n): Entry} for every $POSREG element
     (comment, group, config, coords: X..R or J1..; ``uninit``), from the
     tree of every byte."""
+    return {(g, n): e for g, n, _pos, e in register_list(doc)}
+
+
+def register_list(doc: Document) -> list[tuple[int, int, int, Entry]]:
+    """posreg.va's $POSREG elements in file order: (group, n, the offset of
+    the element's ``[g,n]``, its Entry), from the tree of every byte."""
     tree = _parse(doc, _lines(doc))
-    out = {}
+    out = []
     for r in records(tree, doc):
         if r.name.upper() != "$POSREG":
             continue
         for member in r.members:
             index = _index(member.key) if member.kind == "element" else None
             if index is not None and len(index) == 2:
-                out[index] = member.entry
+                out.append((index[0], index[1], member.pos, member.entry))
     return out

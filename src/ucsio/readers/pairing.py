@@ -1,7 +1,9 @@
 """Pairing the two sides by point name (SPEC: Measurements where they live).
 
 Names match case-insensitively. A robot position also answers to its point
-name (KUKA's ``XP1`` to ``P1``), but its own name wins. ``--map FILE`` is a
+name (KUKA's ``XP1`` to ``P1``; a FANUC ``P[3]`` to its comment), then to
+its aliases (FANUC's ``P3``, ``PR16``), but its own name wins, and a point
+name wins over an alias. ``--map FILE`` is a
 CSV of ``laser,robot`` name pairs (a header row ``laser,robot`` is allowed)
 for anything else; mapped names take part in nothing else. Unpaired names
 on either side are warnings; fewer than three pairs is an error. The result
@@ -45,12 +47,15 @@ def pair(laser: LaserPoints, robot: RobotPoses, mapping=(), map_path: str | None
 
     by_name: dict[str, list[int]] = {}
     by_point: dict[str, list[int]] = {}
+    by_alias: dict[str, list[int]] = {}
     for k, rp in enumerate(robot.poses):
         by_name.setdefault(rp.name.casefold(), []).append(k)
         by_point.setdefault(rp.point.casefold(), []).append(k)
+        for alias in rp.aliases:
+            by_alias.setdefault(alias.casefold(), []).append(k)
 
     def robot_index(name: str, where: dict) -> int | None:
-        for table in (by_name, by_point):
+        for table in (by_name, by_point, by_alias):
             hits = table.get(name.casefold(), [])
             if len(hits) > 1:
                 which = ", ".join(f"{robot.poses[k].name} (line {robot.poses[k].line})"

@@ -8,6 +8,18 @@
   tool^-1, with TOOL_DATA[n] and BASE_DATA[n] read from ``--config
   $config.dat`` (needed where either number is not 0; 0 is the flange, and
   the world).
+- ``fanuc_program``: a TP program's /POS positions (.ls). Each Cartesian
+  position is the TCP of tool frame UT[t] in user frame UF[u], as its GP1
+  says (``UF : u, UT : t``): the flange in world is UF[u] * P * UT[t]^-1,
+  with group 1's frames read from ``--config sysframe.va`` (needed where u
+  or t is not 0; UF 0 is world, UT 0 the faceplate). Named ``P[3]``; it
+  also pairs by its comment, then as ``P3``.
+- ``fanuc_registers``: posreg.va's Cartesian position registers of group 1
+  (``PR[16]``, pairing also by comment, then ``PR16``). A register does not
+  record the frames it was taken in: UF and UT are ``--robot-wobj UFk`` and
+  ``--robot-tool UTk`` (default UF 0 and UT 0: the flange in world, said
+  once paired), read as for a program. Uninitialized registers are left
+  out.
 - ``abb_module``: a module's robtargets, each the pose of the TCP of
   ``--robot-tool`` (default tool0) in the object frame of ``--robot-wobj``
   (default wobj0): flange in world = uframe * oframe * target * tframe^-1.
@@ -34,6 +46,7 @@ from ..geometry.frames import Pose
 from ..parsing.controller import ABB_SUFFIXES
 
 KUKA_SUFFIXES = {".dat"}
+FANUC_SUFFIXES = {".ls", ".va"}
 
 
 @dataclass
@@ -45,12 +58,13 @@ class RobotPose:
     flange: np.ndarray | None       # (4, 4) flange pose in robot world
     problem: UcsioError | None = None
     note: str | None = None         # an assumption made, said once paired ("no FDAT ...")
+    aliases: tuple[str, ...] = ()   # names it answers to after ``point`` (FANUC's P3 for P[3])
 
 
 @dataclass
 class RobotPoses:
     path: str
-    format: str                     # 'csv' | 'kuka' | 'abb'
+    format: str                     # 'csv' | 'kuka' | 'abb' | 'fanuc'
     poses: list[RobotPose]
     form: str                       # orientation form: 'kuka' | 'abb' | 'fanuc'
     warnings: list[str] = field(default_factory=list)
@@ -58,12 +72,16 @@ class RobotPoses:
 
 def read_robot(path: str | os.PathLike, *, config: str | None = None, tool: str = "tool0",
                wobj: str = "wobj0") -> RobotPoses:
-    """The robot side, by the file's kind: a KUKA .dat, an ABB module, else
-    SPEC's CSV."""
+    """The robot side, by the file's kind: a KUKA .dat, an ABB module, a
+    FANUC TP program (.ls) or posreg.va, else SPEC's CSV."""
     path = os.fspath(path)
     suffix = Path(path).suffix.lower()
     if suffix in KUKA_SUFFIXES:
         return kuka_dat(path, config)
+    if suffix == ".ls":
+        return fanuc_program(path, config, tool, wobj)
+    if suffix == ".va":
+        return fanuc_registers(path, config, tool, wobj)
     if suffix in ABB_SUFFIXES:
         return abb_module(path, tool, wobj, config)
     return spec_csv(path)
@@ -161,6 +179,174 @@ def _kuka_entry(cfg, kind: str, n: int, who: str) -> Pose:
 def _names(names: list[str], most: int = 8) -> str:
     shown = ", ".join(names[:most])
     return shown + (f" and {len(names) - most} more" if len(names) > most else "")
+
+
+# ---------------------------------------------------------------- FANUC
+
+def fanuc_program(path: str, config: str | None, tool: str = "tool0",
+                  wobj: str = "wobj0") -> RobotPoses:
+    from ..parsing.document import Document
+    from ..parsing.tp import positions
+
+    if tool.strip().casefold() not in ("tool0", "ut0") or \
+            wobj.strip().casefold() not in ("wobj0", "uf0"):
+        raise UcsioError("--robot-tool and --robot-wobj name the frames of posreg.va's "
+                         "registers (or ABB's); a TP program's positions give their own UF "
+                         "and UT", file=path)
+    doc = Document.read(path)
+    frames = _FanucFrames(config)
+    poses = []
+    for p in positions(doc):
+        line, col = doc.line_col(p.at)
+        rp = RobotPose(p.name, p.comment or f"P{p.number}", line, col, None,
+                       aliases=(f"P{p.number}",) if p.comment else ())
+        poses.append(rp)
+        g = p.groups.get(1)
+        if g is None:
+            others = ", ".join(f"GP{k}" for k in sorted(p.groups)) or "no group"
+            rp.problem = doc.error(f"{p.name}: no group 1 (GP1) position ({others}): not a "
+                                   "pose of the robot's flange", p.at)
+            continue
+        why = _not_cartesian(g.values, g.joint)
+        if why:
+            rp.problem = doc.error(f"{p.name}: {why}", g.at)
+            continue
+        xyzwpr = [g.values[k].value for k in ("X", "Y", "Z", "W", "P", "R")]
+        try:
+            user = frames.pose("UF", g.uf, doc, p.name, g.uf_at)
+            tool_pose = frames.pose("UT", g.ut, doc, p.name, g.ut_at)
+        except UcsioError as exc:
+            rp.problem = exc
+            continue
+        rp.flange = _fanuc_flange(xyzwpr, user, tool_pose)
+    return RobotPoses(path, "fanuc", poses, "fanuc")
+
+
+def fanuc_registers(path: str, config: str | None, tool: str = "tool0",
+                    wobj: str = "wobj0") -> RobotPoses:
+    from ..parsing.document import Document
+    from ..parsing.va import register_list
+
+    doc = Document.read(path)
+    regs = register_list(doc)
+    if not regs:
+        raise UcsioError("no position registers ($POSREG): --robot takes a FANUC posreg.va or "
+                         "TP program (.ls)", file=path)
+    uf = _frame_number(wobj, "wobj0", "UF", "--robot-wobj", "user frame")
+    ut = _frame_number(tool, "tool0", "UT", "--robot-tool", "tool frame")
+    frames = _FanucFrames(config)
+    user = frames.pose("UF", uf, None, "--robot-wobj", 0)
+    tool_pose = frames.pose("UT", ut, None, "--robot-tool", 0)
+    note = None
+    if not uf and not ut:
+        note = ("posreg.va does not record the frames a register was taken in: taken as the "
+                "flange in world (UF 0, UT 0); --robot-wobj UFk and --robot-tool UTk name others")
+    poses = []
+    for g, n, pos, e in regs:
+        if g != 1 or e.uninit:
+            continue
+        comment = (e.comment or "").strip()
+        line, col = doc.line_col(pos)
+        name = f"PR[{n}]"
+        rp = RobotPose(name, comment or f"PR{n}", line, col, None, note=note,
+                       aliases=(f"PR{n}",) if comment else ())
+        poses.append(rp)
+        values = e.coords
+        why = _not_cartesian(values, e.joints)
+        if why:
+            rp.problem = doc.error(f"{name}: {why}", pos)
+            continue
+        xyzwpr = [values[k].value for k in ("X", "Y", "Z", "W", "P", "R")]
+        rp.flange = _fanuc_flange(xyzwpr, user, tool_pose)
+    return RobotPoses(path, "fanuc", poses, "fanuc")
+
+
+def _not_cartesian(values: dict, joint: bool) -> str | None:
+    """Why a FANUC position is not X Y Z W P R, or None."""
+    if joint:
+        return ("a joint position (J1 ...), not X Y Z W P R: a measurement needs the flange's "
+                "Cartesian pose (record it as a Cartesian position)")
+    missing = [k for k in ("X", "Y", "Z", "W", "P", "R") if values.get(k) is None]
+    if missing:
+        stars = [k for k in missing if k in values]
+        return (f"{' '.join(stars)} not a number (********)" if stars else
+                f"{' '.join(missing)} missing") + ": not a complete X Y Z W P R"
+    return None
+
+
+def _frame_number(text: str, default: str, prefix: str, opt: str, what: str) -> int:
+    """--robot-wobj UF2 -> 2 (the default tool0/wobj0, UF0, UT0 -> 0)."""
+    t = text.strip()
+    if t.casefold() == default:
+        return 0
+    head, digits = t[:2], t[2:]
+    if head.upper() == prefix and digits.isdigit() and len(digits) < 6:
+        return int(digits)
+    zero = "world" if prefix == "UF" else "the faceplate"
+    raise UcsioError(f"{opt} {text}: for a FANUC posreg.va, the {what} the registers were "
+                     f"taken in, {prefix}k ({prefix}0: {zero})")
+
+
+class _FanucFrames:
+    """Group 1's user and tool frames from ``--config`` (a sysframe.va, or
+    any FANUC file listing them), loaded when first needed."""
+
+    def __init__(self, config: str | None):
+        self.config = config
+        self.cf = None
+
+    def _load(self):
+        if self.cf is None:
+            from ..parsing.controller import load
+            cf = load(self.config)
+            if cf.vendor != "fanuc":
+                raise UcsioError(f"--config {self.config}: a {cf.vendor.upper()} file; the UF "
+                                 "and UT of FANUC positions come from a sysframe.va",
+                                 file=self.config)
+            self.cf = cf
+        return self.cf
+
+    def pose(self, kind: str, n: int, doc, who: str, at: int) -> Pose | None:
+        """UFn or UTn of group 1 (None for 0: world, the faceplate). ``doc``
+        and ``at``: the position that names it, for the error (None: an
+        option names it, ``who``)."""
+        if n == 0:
+            return None
+        name = f"{kind}{n}"
+        field = f"{kind} : {n}" if doc is not None else name
+
+        def error(message: str) -> UcsioError:
+            return doc.error(message, at) if doc is not None else UcsioError(message)
+
+        if self.config is None:
+            raise error(f"{who}: {field}: give --config sysframe.va, the controller's user and "
+                        "tool frames")
+        cf = self._load()
+        found = [f for f in cf.frames if f.name.upper() == name]
+        if not found:
+            held = [f.name for f in cf.frames if f.name.upper().startswith(kind)
+                    and "@" not in f.name and f.pose is not None]
+            raise error(f"{who}: {field}, but {self.config} does not hold {name} (its group 1 "
+                        f"{'user' if kind == 'UF' else 'tool'} frames: {_names(held) or 'none'})")
+        f = found[0]
+        if f.pose is None:
+            raise error(f"{who}: {field}, but {name} ({f.file}:{f.line}) has no value")
+        return f.pose
+
+
+def _fanuc_flange(xyzwpr, user: Pose | None, tool: Pose | None) -> np.ndarray:
+    """UF * P * UT^-1 as a 4x4 matrix (None: world, the faceplate)."""
+    x, y, z, w, p, r = xyzwpr
+    if user is None and tool is None:
+        # the numbers as written, through the same conversion as the CSV's robot_w/p/r
+        from ..geometry.arrays import flange_matrices
+        return flange_matrices("fanuc", np.array([[w, p, r]]), np.array([[x, y, z]]))[0]
+    flange = Pose.from_wpr(x, y, z, w, p, r)
+    if user is not None:
+        flange = user.compose(flange)
+    if tool is not None:
+        flange = flange.compose(tool.inverse())
+    return _matrix(flange)
 
 
 # ---------------------------------------------------------------- ABB

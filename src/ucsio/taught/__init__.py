@@ -8,7 +8,10 @@ the frame's own dt_mean may say 3 mm. The readers find them:
 - ``kuka``: E6POS/POS data whose FDAT has the frame's BASE_NO, in the .dat
   files of the controller's tree (the KRC tree around $config.dat);
 - ``abb``: robtargets used by instructions with ``\\WObj:=NAME``, in the
-  modules of the file's folder.
+  modules of the file's folder;
+- ``fanuc``: /POS positions whose group says ``UF : k``, in the .ls files of
+  the backup (the folder of the sysframe.va, and below it); joint positions
+  are counted as skipped (they do not move with a frame).
 
 ``points_moved`` puts each one through the simulated and the measured frame
 (frames.Pose, the one place for frame algebra) and reports
@@ -44,14 +47,18 @@ class TaughtPoint(Value):
 
 
 class Found(Value):
-    """What a reader found: the points, and what it could not count."""
+    """What a reader found: the points, what it could not count
+    (``warnings``), and the positions taught in the frame that do not move
+    with it (``skipped``: FANUC joint positions, as (name, file, line))."""
 
-    __slots__ = ("points", "warnings")
+    __slots__ = ("points", "warnings", "skipped")
 
     def __init__(self, points: list[TaughtPoint] | None = None,
-                 warnings: list[str] | None = None):
+                 warnings: list[str] | None = None,
+                 skipped: list[tuple[str, str, int]] | None = None):
         self.points = points if points is not None else []
         self.warnings = warnings if warnings is not None else []
+        self.skipped = skipped if skipped is not None else []
 
 
 def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
@@ -112,6 +119,29 @@ def _own_tree(sources: list, mine: str, root_of, rel) -> list:
             if not any(parts[:len(t)] == t for t in others)]
 
 
+FRAME_FILES = ("sysframe.va", "$config.dat")     # what holds the frames of a backup folder
+
+
+def frames_file_in(folder: str) -> str:
+    """The one file of a backup folder that holds its frames (a FANUC
+    sysframe.va, a KUKA $config.dat; any case), searched in the folder and
+    below it; none or several is an error."""
+    found = []
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames.sort()
+        found += [os.path.join(dirpath, f) for f in sorted(filenames)
+                  if f.lower() in FRAME_FILES]
+    if len(found) == 1:
+        return found[0]
+    if not found:
+        raise UcsioError("a folder without a sysframe.va or $config.dat: give the controller "
+                         "file that holds the frame", file=folder)
+    shown = ", ".join(os.path.relpath(f, folder) for f in found[:5])
+    raise UcsioError(f"a folder of several controllers ({shown}"
+                     f"{' ...' if len(found) > 5 else ''}): give the file that holds the frame",
+                     file=folder)
+
+
 def same_folder(parts: list[str]) -> int:
     """``files_around``'s root for ABB: the file's own folder, not below it."""
     return len(parts)
@@ -133,8 +163,8 @@ def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> 
         from . import abb
         return abb.find(cf, frame, cache)
     if frame.vendor == "fanuc":
-        return Found(warnings=[f"{frame.name}: the points taught in FANUC frames (the /POS "
-                               "of .ls programs) are not read yet"])
+        from . import fanuc
+        return fanuc.find(cf, frame, cache)
     from . import kuka
     return kuka.find(cf, frame, cache)
 
@@ -187,8 +217,10 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
     """SPEC's ``points`` (each ``name``, ``file``, ``line``, ``moved`` in mm,
     worst first) and ``points_moved`` (``count``, ``max``, ``mean``,
     ``worst``: the name of the point that moves most), with the readers'
-    ``points_warnings``. Given the ``solution``'s JSON with its covariance,
-    the taught points are its working points: each row gets ``at_95``, the
+    ``points_warnings`` and ``points_skipped`` (how many positions taught
+    in the frame do not move with it: FANUC joint positions). Given the
+    ``solution``'s JSON with its covariance, the taught points are its
+    working points: each row gets ``at_95``, the
     predicted 95 % error of the measured frame there (mm), and
     ``working_points`` / ``worst`` are SPEC's (plain math: diff imports no
     numpy)."""
@@ -221,7 +253,7 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
     rows.sort(key=lambda r: (-r["moved"], r["file"], r["line"], r["name"]))
     summary = summarize(rows)
     out.update({"points": rows, "points_moved": summary,
-                "points_warnings": list(found.warnings)})
+                "points_warnings": list(found.warnings), "points_skipped": len(found.skipped)})
     return out
 
 
