@@ -32,7 +32,8 @@ def test_demo_text(tmp_path):
                    "group 1, PASS", "--- a/R01_kuka/$config.dat", "+BASE_DATA[3]={X 6125.",
                    "--- a/R02_abb/CellR02.mod", "cell R03 (KUKA)", "solved with the frame",
                    "+TOOL_DATA[2]={X 0.8", "+BASE_DATA[1]={X 3252.8",
-                   "demo: 3 cells, every cell passes."):
+                   "cell R04 (FANUC)", "UFRAME[1:PALLET]=PR[20] ;", "+  X:  2104.6",
+                   "demo: 4 cells, every cell passes."):
         assert needle in out
     assert list(tmp_path.iterdir()) == []          # nothing written
 
@@ -41,7 +42,7 @@ def test_demo_json_and_out(tmp_path):
     r = run(tmp_path, "--json", "--out", "patched")
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
-    assert d["ok"] is True and len(d["cells"]) == 3
+    assert d["ok"] is True and len(d["cells"]) == len(CELLS) == 4
     for cell in d["cells"]:
         assert cell["solve"]["accepted"] is True
         assert cell["solve"]["n_used"] == cell["solve"]["n_points"] - 1      # the blunder
@@ -62,7 +63,7 @@ def test_demo_json_and_out(tmp_path):
 def test_demo_api():
     from ucsio import api
     d = api.demo()
-    assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02", "R03"]
+    assert d["ok"] and [c["cell"] for c in d["cells"]] == ["R01", "R02", "R03", "R04"]
 
 
 def test_demo_gate_and_bad_out(tmp_path):
@@ -97,19 +98,25 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
         ctl, meas = Path(cell.controller).name, Path(cell.measurement).name
         assert (folder / ctl).read_bytes() == data.joinpath(cell.controller).read_bytes()
         assert (folder / meas).read_bytes() == data.joinpath(cell.measurement).read_bytes()
-        if cell.robot:
-            robot = Path(cell.robot).name
-            assert (folder / robot).read_bytes() == data.joinpath(cell.robot).read_bytes()
+        for rel in (cell.robot, *cell.extra):
+            if rel:
+                assert (folder / Path(rel).name).read_bytes() == data.joinpath(rel).read_bytes()
         demo_solution = json.loads((folder / "solution.json").read_text())
         demo_patched = (folder / "patched" / ctl).read_bytes()
+        made = [Path("solution.json"), Path("patched") / ctl]
+        if cell.vendor == "fanuc":
+            made.append(Path("SET_UF1.LS"))
+        demo_made = {m: (folder / m).read_bytes() for m in made}
         replay = shutil.copytree(folder, tmp_path / "replay" / folder.name)
-        for p in (replay / "solution.json", replay / "patched" / ctl):
-            p.unlink()
+        for m in made:
+            (replay / m).unlink()
         res = subprocess.run(["sh", str(replay / "replay.sh")], capture_output=True, text=True,
                              env=env, timeout=120)
         assert res.returncode == 0, res.stderr
         assert json.loads((replay / "solution.json").read_text())["frame"] == demo_solution["frame"]
         assert (replay / "patched" / ctl).read_bytes() == demo_patched
+        for m in made[1:]:                  # the patched copy, the FANUC program: byte for byte
+            assert (replay / m).read_bytes() == demo_made[m], m
         assert f"~ {cell.frame}" in res.stdout or "value changed" in res.stdout
 
 
@@ -131,3 +138,53 @@ def test_demo_third_cell_solves_the_tcp_and_patches_base_and_tool(tmp_path):
         (tcp["x"], tcp["y"], tcp["z"]), abs=5e-4)
     assert patched.frame("SMR_adapter").pose.abc == (0.0, 0.0, 0.0)
     assert {c["component"] for c in cell["patch"]["changes"]} >= {"x", "y", "z", "a"}
+
+
+def test_demo_fanuc_cell_end_to_end(tmp_path):
+    """R04 (issue 19 point 8): the tracker's point table and the measurement
+    program MEASURE.LS (positions taught with the reflector UT2 in world);
+    the true UF1 of make_demo.py comes back, the blunder M6 is excluded, the
+    generated program sets UF1 from a register POSREG.VA shows unused, keeps
+    the frame's comment, and reads back as the solution; the listing's copy
+    changes that frame alone; the replay's diff --points moves the six
+    Cartesian positions of PALLET.LS and skips its joint one."""
+    import os
+    from pathlib import Path
+
+    from ucsio.parsing.controller import load as load_file
+    r = run(tmp_path, "--json", "--out", "out")
+    assert r.returncode == 0, r.stderr
+    cell = json.loads(r.stdout)["cells"][3]
+    assert (cell["cell"], cell["vendor"], cell["frame"], cell["label"]) == \
+        ("R04", "fanuc", "UF1", "PALLET")
+    m = cell["solve"]["frame"]
+    true = (2104.650, -652.380, 418.910, 0.210, -0.140, 90.380)     # make_demo.R04_TRUE_UF
+    assert [m[k] for k in "xyz"] == pytest.approx(true[:3], abs=0.15)
+    assert [m[k] for k in ("w", "p", "r")] == pytest.approx(true[3:], abs=0.02)
+    assert [p["name"] for p in cell["solve"]["points"] if not p["used"]] == ["M6"]
+    prog = cell["program"]
+    assert (prog["name"], prog["pr"], prog["pr_from"]) == ("SET_UF1", 20, "POSREG.VA")
+    folder = tmp_path / "out" / "R04_fanuc"
+    written = folder / "SET_UF1.LS"
+    assert written.read_bytes() == prog["text"].encode("ascii") and b"\r\n/END\r\n" in \
+        written.read_bytes()
+    (uf1,) = load_file(written).frames
+    assert (uf1.name, uf1.label) == ("UF1", "PALLET")
+    assert [uf1.pose.x, uf1.pose.y, uf1.pose.z] == pytest.approx([m["x"], m["y"], m["z"]],
+                                                                 abs=5e-4)
+    original = (folder / "SYSFRAME.VA").read_bytes().split(b"\r\n")
+    copy = (folder / "patched" / "SYSFRAME.VA").read_bytes().split(b"\r\n")
+    assert len(original) == len(copy)
+    assert [k for k, (a, b) in enumerate(zip(original, copy)) if a != b] == [3, 4]
+    bindir = tmp_path / "bin"
+    bindir.mkdir()
+    (bindir / "ucsio").write_text(f"#!/bin/sh\nexec {sys.executable} -m ucsio \"$@\"\n")
+    (bindir / "ucsio").chmod(0o755)
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ['PATH']}",
+               PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
+    res = subprocess.run([sys.executable, "-m", "ucsio", "diff", "SYSFRAME.VA", "--frame", "UF1",
+                          "--measured", "solution.json", "--points", "--json"], cwd=folder,
+                         env=env, capture_output=True, text=True)
+    d = json.loads(res.stdout)
+    assert d["points_moved"]["count"] == 6 and d["points_skipped"] == 1
+    assert {p["file"] for p in d["points"]} == {"PALLET.LS"}

@@ -1,8 +1,10 @@
 """The whole job on the example cells shipped with ucsio (a KUKA $config.dat and
 an ABB RAPID module, each with a laser-tracker measurement holding one
-blunder; and a KUKA cell measured where the data live, a SpatialAnalyzer
-export and the measurement program's .dat, whose reflector TCP is solved with
-the frame): solve, diff against the simulated frame, preview the patch. Nothing
+blunder; a KUKA cell measured where the data live, a SpatialAnalyzer export
+and the measurement program's .dat, whose reflector TCP is solved with the
+frame; and a FANUC cell, a tracker's point table and the measurement program
+MEASURE.LS, its frame set by a generated TP program): solve, diff against the
+simulated frame, preview the patch. Nothing
 is written unless --out DIR is given: then DIR/<cell>/ holds the cell's inputs
 (controller file, measurement CSV), solution.json, the patched copy under
 patched/, and replay.sh with every step as the ucsio command to type. The
@@ -39,8 +41,10 @@ def run(args) -> int:
     print(f"demo: {len(result['cells'])} cells, {verdict}.")
     if result["out"]:
         for cell in result["cells"]:
+            program = (cell.get("program") or {}).get("written")
             print(f"wrote {cell['folder']}: inputs, solution.json, "
                   + (f"{cell['patch']['written']}, " if cell["patch"]["written"] else "")
+                  + (f"{program}, " if program else "")
                   + "replay.sh (every step by hand)", file=sys.stderr)
     else:
         print("nothing written (ucsio demo --out DIR writes the inputs, the solution and the "
@@ -60,7 +64,14 @@ def print_cell(cell: dict) -> None:
     tool = cell["tool"]
     tl = f" \"{tool['label']}\"" if tool.get("label") else ""
     solved = s.get("tcp") if isinstance(s.get("tcp"), dict) and s["tcp"].get("solved") else None
-    if solved:
+    if cell.get("robot") and not solved:
+        print(f"laser        {cell['measurement']}   robot {cell['robot']}   TCP from "
+              f"{tool['name']}{tl}: " + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
+        for w in cell.get("warnings") or ():
+            print(f"warning: {w}")
+        print()
+        print("1. solve (Horn's method, leave-one-out outlier exclusion)")
+    elif solved:
         print(f"laser        {cell['measurement']}   robot {cell['robot']}")
         print(f"TCP of {tool['name']}{tl}: nominal "
               + ", ".join(f"{v:.3f}" for v in tool["tcp"]) + ", solved with the frame")
@@ -92,15 +103,30 @@ def print_cell(cell: dict) -> None:
     print()
     print("2. diff: measured - simulated")
     sim, mea = d["simulated"], d["measured"]
-    rows = [["simulated", *(fmt(sim[k]) for k in "xyz"), *(fmt(sim[k], 4) for k in "abc")],
-            ["measured", *(fmt(mea[k]) for k in "xyz"), *(fmt(mea[k], 4) for k in "abc")],
+    # the vendor's own angles: FANUC W, P, R are KUKA's C, B, A (one matrix, SPEC)
+    angles = "cba" if cell["vendor"] == "fanuc" else "abc"
+    rows = [["simulated", *(fmt(sim[k]) for k in "xyz"), *(fmt(sim[k], 4) for k in angles)],
+            ["measured", *(fmt(mea[k]) for k in "xyz"), *(fmt(mea[k], 4) for k in angles)],
             ["delta", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
-             *(f"{d[k]:+.4f}" for k in ("da", "db", "dc"))]]
-    print(indent(table(["", "x", "y", "z", "a", "b", "c"], rows, right={1, 2, 3, 4, 5, 6})))
+             *(f"{d['d' + k]:+.4f}" for k in angles)]]
+    heads = ["w", "p", "r"] if cell["vendor"] == "fanuc" else ["a", "b", "c"]
+    print(indent(table(["", "x", "y", "z", *heads], rows, right={1, 2, 3, 4, 5, 6})))
     print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
           f"group {d['group']}, {paint('PASS', 'pass') if d['pass'] else paint('FAIL', 'fail')} "
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
     print()
+    program = cell.get("program")
+    if program is not None:         # FANUC: the controller does not load .va files
+        print(f"3. write-back: a TP program that sets {program['frame']} (PR[{program['pr']}]: "
+              f"unused in {program['pr_from']}), as the controller writes its .LS files")
+        lines = program["text"].split("\r\n")
+        body = lines[lines.index("/MN") + 1:lines.index("/POS")]
+        print(indent("\n".join([f"/PROG  {program['name']}", "/MN", *body, "/END"])))
+        print()
+        print("4. review: the listing with the measured frame (a copy for the reviewer; the "
+              "controller does not load it)")
+        print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))
+        return
     print("3. patch preview (only the frame's numbers change"
           + (f", and {tool['name']}'s x, y, z)" if solved else ")"))
     print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))

@@ -36,6 +36,9 @@ class Cell:
     story: str
     robot: str | None = None     # the robot side's own file: measurement is then the laser's,
                                  # and the TCP is solved with the frame (and patched into tool)
+    tcp_solve: bool = True       # with robot: False takes the tool's TCP as it is
+    extra: tuple[str, ...] = ()  # other files of the backup (FANUC: POSREG.VA, a program)
+    posreg: str | None = None    # FANUC: the listing program() picks an unused register from
 
 
 CELLS = (
@@ -50,6 +53,11 @@ CELLS = (
          "KUKA KR 120 at a fixing jig, from a SpatialAnalyzer export and the measurement "
          "program's MEASURE.dat: BASE_DATA[1] and the never-measured reflector adapter's TCP",
          robot="R03_kuka/MEASURE.dat"),
+    Cell("R04", "fanuc", "R04_fanuc/SYSFRAME.VA", "UF1", "R04_fanuc/pallet_points.txt", "UT2",
+         "FANUC palletising cell, from the tracker's point table and the measurement program "
+         "MEASURE.LS: UF1 'PALLET' as simulated vs measured, set by a generated TP program",
+         robot="R04_fanuc/MEASURE.LS", tcp_solve=False,
+         extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"), posreg="R04_fanuc/POSREG.VA"),
 )
 
 
@@ -76,21 +84,31 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     if cell.robot is None:
         sol = solve(read_measurement(root / cell.measurement), tcp)
     else:
-        sol, warnings = _solve_where_it_lives(cell, root)
+        sol, warnings = _solve_where_it_lives(cell, root, None if cell.tcp_solve else tcp)
     sim = cf.frame(cell.frame)
     d = diff_frame(cf, cell.frame, sol.pose, tol)
+    # FANUC: the listing's reviewed copy (the controller does not load .va
+    # files) and the TP program that sets the frame
     result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
-    if cell.robot is not None:
+    if cell.robot is not None and cell.tcp_solve:
         result = _with_tcp(cf, result, cell.tool, sol.tcp)
+    prog = _program(cell, root, sim, sol) if cell.vendor == "fanuc" else None
     written = folder = None
     if out is not None:
         folder = Path(out) / Path(cell.controller).parent.name
         _mkdir(folder / "patched")
-        write_inputs(cell, root, folder, sol)
+        write_inputs(cell, root, folder, sol, label=sim.label)
         if sol.accepted:
             written = save(result, folder / "patched" / Path(cell.controller).name)
+            if prog is not None:
+                from ..review.program import save as save_program
+                prog.written = save_program(prog, str(folder / PROGRAM_FILE))
     label = f"a/{cell.controller}"
-    return {
+    extra = {} if prog is None else {"program": {
+        "file": PROGRAM_FILE, "name": prog.name, "frame": prog.frame, "pr": prog.pr,
+        "pr_from": Path(prog.pr_from).name if prog.pr_from != "--pr" else prog.pr_from,
+        "text": prog.text, "written": str(prog.written) if prog.written else None}}
+    return {**extra, 
         "cell": cell.name, "vendor": cell.vendor, "story": cell.story,
         "controller": cell.controller, "measurement": cell.measurement,
         "frame": sim.name, "label": sim.label,
@@ -108,16 +126,32 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     }
 
 
-def _solve_where_it_lives(cell: Cell, root: Path):
-    """The third cell: laser export + measurement program, TCP solved."""
+def _solve_where_it_lives(cell: Cell, root: Path, tcp=None):
+    """Laser export + measurement program; the TCP solved with the frame
+    where ``tcp`` is None (the third cell), else that TCP (the FANUC cell)."""
     from ..readers.laser import read_laser
     from ..readers.pairing import pair
     from ..readers.robot import read_robot
-    from ..method.tcp_solve import solve_joint
 
     meas, warnings = pair(read_laser(root / cell.measurement),
                           read_robot(root / cell.robot, config=str(root / cell.controller)))
+    if tcp is not None:
+        from ..method.solve import solve
+        return solve(meas, tcp), warnings
+    from ..method.tcp_solve import solve_joint
     return solve_joint(meas), warnings
+
+
+PROGRAM_FILE = "SET_UF1.LS"     # the FANUC cell's program (its name is the program's)
+
+
+def _program(cell: Cell, root: Path, sim, sol):
+    """The TP program that sets the FANUC cell's frame, its register one that
+    the backup's POSREG.VA shows unused, the frame's comment kept."""
+    from ..review.program import program
+
+    return program(sol.pose, cell.frame, comment=sim.label,
+                   posreg=str(root / cell.posreg) if cell.posreg else None, out=PROGRAM_FILE)
 
 
 def _with_tcp(cf, result, tool: str, tcp):
@@ -142,11 +176,38 @@ def _mkdir(folder: Path) -> None:
                          file=str(folder)) from None
 
 
-def replay_script(cell: Cell) -> str:
-    """The demo's steps for one cell as the commands a user types."""
+def replay_script(cell: Cell, label: str | None = None) -> str:
+    """The demo's steps for one cell as the commands a user types (``label``:
+    the frame's, which the FANUC program keeps as its comment)."""
     ctl = Path(cell.controller).name
     meas = Path(cell.measurement).name
     q = _sh
+    if cell.vendor == "fanuc":
+        robot = Path(cell.robot or "").name
+        posreg = Path(cell.posreg or "").name
+        return "\n".join([
+            "#!/bin/sh",
+            f"# ucsio demo, cell {cell.name}: {cell.story}",
+            "# Every step of the demo by hand, in this folder. The laser points come from the",
+            f"# tracker's point table, the robot's from the measurement program {robot} (each",
+            f"# position taught with the reflector tool {cell.tool}); the controller does not",
+            "# load .va files: a TP program sets the frame.",
+            "set -e",
+            'cd "$(dirname "$0")"',
+            "# 1. solve: Horn's method, leave-one-out outlier exclusion",
+            f"ucsio solve --laser {q(meas)} --robot {q(robot)} --config {q(ctl)} "
+            f"--tool {q(ctl + ':' + cell.tool)} -o solution.json",
+            "# 2. diff: the simulated frame against the measured one, and the taught points it moves",
+            f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json --points || true",
+            f"# 3. write-back: a TP program that sets {cell.frame} (a register {posreg} shows unused)",
+            f"ucsio program solution.json --frame {q(cell.frame)} --posreg {q(posreg)} "
+            + (f"--comment {q(label)} " if label else "") + f"-o {PROGRAM_FILE}",
+            f"ucsio frames {PROGRAM_FILE}",
+            "# 4. review: a copy of the listing with the measured frame, against the original",
+            f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json "
+            f"-o {q('patched/' + ctl)}",
+            f"ucsio diff {q(ctl)} {q('patched/' + ctl)} || true",
+            ""])
     if cell.robot is not None:
         robot = Path(cell.robot).name
         return "\n".join([
@@ -197,16 +258,16 @@ def _sh(word: str) -> str:
     return shlex.quote(word)
 
 
-def write_inputs(cell: Cell, root: Path, folder: Path, sol) -> None:
+def write_inputs(cell: Cell, root: Path, folder: Path, sol, label: str | None = None) -> None:
     """The cell's inputs as shipped, the solution (as ``solve -o`` writes it)
     and replay.sh, so every step can be replayed by hand."""
     from ..files import atomic_write, atomic_write_text
     from ..method.solution import solution_text
-    for rel in (cell.controller, cell.measurement, cell.robot):
+    for rel in (cell.controller, cell.measurement, cell.robot, *cell.extra):
         if rel is not None:
             atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
     atomic_write_text(folder / "solution.json", solution_text(sol.as_dict()))
-    atomic_write_text(folder / "replay.sh", replay_script(cell))
+    atomic_write_text(folder / "replay.sh", replay_script(cell, label))
     try:
         os.chmod(folder / "replay.sh", 0o755)
     except OSError:
