@@ -116,7 +116,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     command), every subcommand, so help and suggestions list them all."""
     parser = _Parser(
         prog="ucsio",
-        description="Measured user frames for ABB RAPID and KUKA KRL controller files.")
+        description="Measured user frames for ABB, KUKA and FANUC controller files.")
     parser.add_argument("--version", action="version", version=f"ucsio {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
