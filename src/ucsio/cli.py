@@ -196,6 +196,13 @@ def report_error(exc: UcsioError, want_json: bool) -> None:
 
 
 def entry() -> None:
+    # The command line's process: the cyclic collector's first generation
+    # every 50,000 allocations instead of 700. A short command made of
+    # imports, an argument parser and one file's objects (few of them in
+    # cycles) spent 4 % of its time in collections that found nothing; a
+    # long one still collects, so a large backup's documents are freed.
+    import gc
+    gc.set_threshold(50_000, 20, 100)
     code = main()
     regex.save_cache()      # patterns compiled for the first time, for the next run
     # Everything is written; skip the interpreter's teardown (freeing every
