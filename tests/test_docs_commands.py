@@ -148,3 +148,19 @@ def test_the_readme_s_python_example_runs(tmp_path):
         res = subprocess.run([sys.executable, "-c", block], cwd=tmp_path, capture_output=True,
                              text=True, timeout=300)
         assert res.returncode == 0, res.stderr[-3000:]
+
+
+def test_every_benchmark_the_docs_name_exists_and_starts():
+    """The benchmark lines take minutes and are run by hand (docs/speed.md):
+    here each script they name exists and answers --help, so a renamed
+    script or option cannot leave the docs behind."""
+    named = set()
+    for page in PAGES:
+        for block in sh_blocks(page):
+            named.update(re.findall(r"^python (benchmarks/\S+\.py)", block, re.M))
+    assert named
+    for script in sorted(named):
+        assert (ROOT / script).is_file(), script
+        res = subprocess.run([sys.executable, str(ROOT / script), "--help"], capture_output=True,
+                             text=True, timeout=120, cwd=ROOT)
+        assert res.returncode == 0 and "usage:" in res.stdout, (script, res.stderr[-500:])
