@@ -437,7 +437,9 @@ def fanuc_edit(text: str, n: Number, new: str, listing: bool) -> Edit:
     after the ``X:`` take up the difference (at least one stays). In a TP
     program, the value keeps the program's form: a negative number in
     parentheses (added where the old value had none; a positive value
-    drops the pair the old negative one had), deeper parentheses kept."""
+    drops the pair the old negative one had, and keeps a pair the program
+    wrote around a positive one, ``(115)``), deeper parentheses kept,
+    blanks inside them too (``( -5 )``)."""
     start, end = n.span.start, n.span.end
     if listing:
         b = start
@@ -446,12 +448,21 @@ def fanuc_edit(text: str, n: Number, new: str, listing: bool) -> Edit:
         width = end - b
         blanks = max(1 if b < start else 0, width - len(new))
         return Edit(Span(b, end), " " * blanks + new)
-    wrapped = (start > 0 and text[start - 1] == "(" and end < len(text) and text[end] == ")")
-    if wrapped and not (start > 1 and text[start - 2] == "("):
-        return Edit(Span(start - 1, end + 1), tp_literal(new))
-    if wrapped:
-        return Edit(n.span, new)           # ((-29)): the inner number only
-    return Edit(n.span, tp_literal(new))
+    before, after = start, end           # past the blanks inside the parentheses
+    while before > 0 and text[before - 1] in " \t":
+        before -= 1
+    while after < len(text) and text[after] in " \t":
+        after += 1
+    wrapped = before > 0 and text[before - 1] == "(" and after < len(text) and text[after] == ")"
+    outer = before - 1
+    while outer > 0 and text[outer - 1] in " \t":
+        outer -= 1
+    double = wrapped and outer > 0 and text[outer - 1] == "("
+    if not wrapped:
+        return Edit(n.span, tp_literal(new))
+    if double or not n.text.lstrip().startswith("-") or new.startswith("-"):
+        return Edit(n.span, new)           # ((-29)), (115), (-4) -> (-7): the number only
+    return Edit(Span(before - 1, after + 1), new)     # (-4) -> 5: the pendant's form
 
 
 LISTING_WARNING = ("the controller does not load .va files: this copy of the listing is for "

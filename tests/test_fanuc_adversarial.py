@@ -1,0 +1,266 @@
+"""Adversarial tests of FANUC write-back and reading (issue 19): generated
+TP programs in every style the controller and other generators write
+(spacing, CRLF/LF/mixed line endings, comments on PR, parenthesised and
+doubled-parenthesised negatives, numbers without leading zero, integers,
+long decimals, group prefixes, a frame of group 2 through DEFAULT_GROUP,
+frames sharing registers or not), patched to random frames. The properties:
+every byte outside the six values is the original's, the values read back
+as the target within 0.001 mm and 0.001 deg, the other frames keep their
+values, and a refusal changes nothing (exit 2, file:line:col).
+
+Numbers are checked against independent sources: the text parsed back by
+ucsio's grammar and compared with the target through scipy's Rotation
+(``from_euler("xyz", [w, p, r])`` is FANUC's Rz(r)·Ry(p)·Rx(w))."""
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
+
+from conftest import ROOT
+from ucsio.errors import UcsioError
+from ucsio.geometry.frames import Pose
+from ucsio.parsing.controller import parse
+from ucsio.parsing.document import Document
+from ucsio.review.patch import patch_frame, patch_tcp
+
+SRC = str(ROOT / "src")
+SETTINGS = dict(deadline=None, derandomize=True,
+                suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+
+
+def run(*args, cwd=None):
+    env = dict(os.environ, PYTHONPATH=SRC, NO_COLOR="1")
+    return subprocess.run([sys.executable, "-m", "ucsio", *map(str, args)], cwd=cwd,
+                          capture_output=True, env=env)
+
+
+def matrix(x, y, z, w, p, r) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3] = Rotation.from_euler("xyz", [w, p, r], degrees=True).as_matrix()
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def assert_pose(pose: Pose, x, y, z, w, p, r, mm=5e-4 + 1e-9, deg=1e-3):
+    """``pose`` is X Y Z W P R within ``mm`` and ``deg`` (scipy's matrix)."""
+    want = matrix(x, y, z, w, p, r)
+    got = np.eye(4)
+    got[:3, :3] = Rotation.from_quat([pose.q[1], pose.q[2], pose.q[3], pose.q[0]]).as_matrix()
+    got[:3, 3] = pose.t
+    assert np.all(np.abs(got[:3, 3] - want[:3, 3]) <= mm), (got[:3, 3], want[:3, 3])
+    gap = Rotation.from_matrix(got[:3, :3].T @ want[:3, :3]).magnitude()
+    assert np.degrees(gap) <= deg, np.degrees(gap)
+
+
+# -- generated programs --------------------------------------------------------------------
+def number_text(draw, value: float) -> str:
+    """``value`` as one of the forms programs hold."""
+    form = draw(st.sampled_from(["int", "short", "padded", "long", "lead0", "dot"]))
+    if form == "int":
+        s = str(int(round(value)))
+    elif form == "short":
+        s = f"{value:.3f}".rstrip("0").rstrip(".")
+    elif form == "padded":
+        s = f"{value:.3f}"
+    elif form == "long":
+        s = f"{value:.9f}"
+    elif form == "lead0":
+        s = f"{value:.2f}"
+    else:
+        s = f"{value:.1f}" + "."[:0]
+        if s.startswith("0.") or s.startswith("-0."):
+            s = s.replace("0.", ".", 1)
+    if s in ("-0", "-0.0", "-.0", "-0.000", "-0.000000000", "-0.00"):
+        s = s[1:]
+    return s
+
+
+def literal(draw, text: str) -> str:
+    """A number as a PR[n,i]= value: bare, in parentheses, in two."""
+    if text.startswith("-"):
+        return draw(st.sampled_from([f"({text})", f"(({text}))", f"({text})"]))
+    return draw(st.sampled_from([text, text, f"({text})", f"(({text}))"]))
+
+
+values6 = st.tuples(*[st.floats(-3000, 3000, allow_nan=False)] * 3,
+                    *[st.floats(-179.9, 179.9)] * 1, st.floats(-89.9, 89.9),
+                    st.floats(-179.9, 179.9))
+
+
+@st.composite
+def programs(draw):
+    """(program bytes, the frame's name, the PR lines' numbers (line index
+    in /MN order), the other frames' names). The frame under test is set
+    from PR[n]; other frames from their own registers, or (``share``) from
+    the same one after it changed one component."""
+    group = draw(st.sampled_from([1, 1, 2]))
+    kind = draw(st.sampled_from(["UFRAME", "UTOOL"]))
+    k = draw(st.integers(1, 30))
+    n = draw(st.integers(1, 200))
+    gp = draw(st.sampled_from(["", "", f"GP{group}:"]))
+    prc = draw(st.sampled_from(["", "", ":frame", ": set up frame "]))
+    fcomment = draw(st.sampled_from(["", ":FIXTURE", ":UF 9"]))
+    refc = draw(st.sampled_from(["", ":frame"]))
+    eq = draw(st.sampled_from(["=", "=", " = "]))
+    pad = draw(st.sampled_from(["    ", " ", ""]))
+    mn = []
+    before = draw(st.lists(st.sampled_from([
+        "!setting the frame", "R[1]=0", "UFRAME_NUM=0", "J P[1] 100% FINE", "PR[200]=LPOS",
+        "PR[201,1]=5", "// PR[%d,1]=77" % n, "! PR[%d,2]=(-5)" % n, "PAUSE"]), max_size=3))
+    mn += [b + " ;" for b in before]
+    start = draw(st.sampled_from(["LPOS", "LPOS-LPOS", "LPOS - LPOS", "none"]))
+    if start != "none":
+        mn.append(f"PR[{gp}{n}{prc}]{eq}{start}{pad};")
+    vals = draw(values6)
+    order = draw(st.permutations(range(6)))
+    pr_lines = []
+    for i in order:
+        mn.append(f"PR[{gp}{n},{i + 1}{prc}]{eq}{literal(draw, number_text(draw, vals[i]))}"
+                  f"{pad};")
+        pr_lines.append(len(mn) - 1)
+    mn.append(f"{kind}[{k}{fcomment}]{eq}PR[{n}{refc}]{pad};")
+    others = []
+    share = False
+    if draw(st.booleans()):                 # another frame, its own register
+        m = n + 1 + draw(st.integers(0, 5))
+        mn.append(f"PR[{m}]=LPOS-LPOS ;")
+        for i in range(6):
+            mn.append(f"PR[{m},{i + 1}]={literal(draw, number_text(draw, vals[i] / 2))} ;")
+        other_k = k % 30 + 1
+        mn.append(f"UFRAME[{other_k}]=PR[{m}] ;" if kind == "UTOOL" else
+                  f"UTOOL[{other_k}]=PR[{m}] ;")
+        others.append(("UF" if kind == "UTOOL" else "UT") + str(other_k))
+    elif draw(st.booleans()):               # the same register, one value changed after
+        share = True
+        mn.append(f"PR[{gp}{n},1]=12.5 ;")
+        other_k = k % 30 + 1
+        mn.append(f"{kind}[{other_k}]=PR[{n}] ;")
+        others.append(("UF" if kind == "UFRAME" else "UT") + str(other_k))
+    mn += [a + " ;" for a in draw(st.lists(st.sampled_from([
+        "L P[2] 500mm/sec CNT100", "!done", "UTOOL_NUM=1", "PR[202]=PR[202]-PR[202]"]),
+        max_size=3))]
+    endings = draw(st.sampled_from(["\r\n", "\n", "mixed"]))
+    groups = ",".join("1" if g == group else "*" for g in range(1, 6))
+    head = ["/PROG  GEN", "/ATTR", "OWNER\t\t= MNEDITOR;", f"DEFAULT_GROUP\t= {groups};", "/MN"]
+    indent = draw(st.sampled_from(["{:4d}:  ", "{:d}:", "  {:d}:\t"]))
+    lines = head + [indent.format(i) + s for i, s in enumerate(mn, 1)] + ["/POS", "/END"]
+    if endings == "mixed":
+        ends = draw(st.lists(st.sampled_from(["\r\n", "\n"]), min_size=len(lines),
+                             max_size=len(lines)))
+    else:
+        ends = [endings] * len(lines)
+    final = draw(st.booleans())
+    text = "".join(line + end for line, end in zip(lines, ends))
+    if not final:
+        text = text[:-len(ends[-1])]
+    name = ("UF" if kind == "UFRAME" else "UT") + str(k) + ("" if group == 1 else f"@{group}")
+    others = [o + ("" if group == 1 else f"@{group}") for o in others]
+    first = len(head)
+    return text.encode("ascii"), name, [first + i for i in pr_lines], others, share
+
+
+target_values = st.tuples(*[st.floats(-5000, 5000)] * 3,
+                          st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0,
+                                                                           179.9996])),
+                          st.one_of(st.floats(-90, 90), st.sampled_from([90.0, -90.0,
+                                                                         89.9996])),
+                          st.one_of(st.floats(-180, 180), st.sampled_from([-179.9996, 0.0])))
+
+_VALUE = re.compile(rb"^(.*?\]\s*=\s*)(.*?)(\s*;[^;]*)$", re.S)
+
+
+def only_values_changed(old: bytes, new: bytes, pr_lines: list[int]) -> None:
+    """Every line but the PR lines is the same bytes; on those, everything
+    but the value (from after "=" to the ";") is too, and the new value is
+    a number in at most three parentheses."""
+    a, b = old.split(b"\n"), new.split(b"\n")
+    assert len(a) == len(b)
+    for i, (x, y) in enumerate(zip(a, b)):
+        if x == y:
+            continue
+        assert i in pr_lines, (i, x, y)
+        mx, my = _VALUE.match(x), _VALUE.match(y)
+        assert mx and my and mx.group(1) == my.group(1) and mx.group(3) == my.group(3), (x, y)
+        v = my.group(2).decode()
+        assert re.fullmatch(r"\(*[ \t]*-?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)[ \t]*\)*", v), v
+        assert v.count("(") == v.count(")") <= 3
+        was = mx.group(2).decode()
+        if _NUM.search(was).group().startswith("-") == _NUM.search(v).group().startswith("-"):
+            assert _NUM.sub("N", was) == _NUM.sub("N", v), (x, y)    # the same parentheses
+        elif _NUM.search(v).group().startswith("-"):
+            assert v.startswith("(")        # a negative one in parentheses
+
+
+_NUM = re.compile(r"-?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
+
+
+@settings(max_examples=250, **SETTINGS)
+@given(programs(), target_values)
+def test_a_generated_program_is_patched_in_its_values_only(prog, target):
+    raw, name, pr_lines, others, share = prog
+    cf = parse(Document(raw, "GEN.LS"))
+    frame = cf.frame(name)
+    before = {f.name: f.pose for f in cf.frames}
+    assert frame.pose is not None, [lint.message for lint in cf.lints]
+    pose = Pose.from_wpr(*target)
+    if share:
+        with pytest.raises(UcsioError) as err:
+            patch_frame(cf, name, pose, measured=False)
+        assert err.value.line is not None and err.value.col is not None
+        assert "also sets" in err.value.message
+        return
+    if name.startswith("UT"):           # a solved TCP: x, y, z; W P R stay
+        result = patch_tcp(cf, name, target[:3])
+        old = frame.info
+        want = (*target[:3], old["w"], old["p"], old["r"])
+    else:
+        result = patch_frame(cf, name, pose)
+        want = target
+    only_values_changed(raw, result.new_bytes, pr_lines)
+    again = parse(Document(result.new_bytes, "GEN.LS"), full=True)
+    assert_pose(again.frame(name).pose, *want)
+    for f in again.frames:
+        if f.name != name:
+            assert f.pose == before[f.name], f.name
+    assert [lint.code for lint in again.lints] == [lint.code for lint in cf.lints]
+
+
+def program_text(mn: list[str], group: int = 1) -> bytes:
+    groups = ",".join("1" if g == group else "*" for g in range(1, 6))
+    lines = ["/PROG  T", "/ATTR", f"DEFAULT_GROUP\t= {groups};", "/MN"]
+    lines += [f"{i:4d}:  {s}" for i, s in enumerate(mn, 1)] + ["/POS", "/END"]
+    return ("\r\n".join(lines) + "\r\n").encode()
+
+
+def sets_from(n: int, values, head: str = "UFRAME[1]") -> list[str]:
+    return [f"PR[{n}]=LPOS    ;"] + [f"PR[{n},{i}]={v}    ;" for i, v in enumerate(values, 1)] \
+        + [f"{head}=PR[{n}] ;"]
+
+
+@pytest.mark.parametrize("old, new_value, new", [
+    ("(115)", 7, "(7)"),                 # a positive value the program put in parentheses
+    ("(115)", -7, "(-7)"),
+    ("( -5 )", -7, "( -7 )"),            # blanks inside the parentheses
+    ("( -5 )", 7, "7"),
+    ("( ( ( -5 ) ) )", -7, "( ( ( -7 ) ) )"),    # three deep stays three deep
+    ("(((-5)))", 7, "(((7)))"),
+    ("((-29))", 4, "((4))"),
+    ("(-1100.3)", 5, "5"),               # the pendant's form: a positive one bare
+    ("770.299", -7, "(-7)"),
+])
+def test_a_value_keeps_the_program_s_parentheses(old, new_value, new):
+    values = ["1", "2", "3", "4", "5", old]
+    raw = program_text(sets_from(16, values))
+    cf = parse(Document(raw, "T.LS"))
+    result = patch_frame(cf, "UF1", Pose.from_wpr(1, 2, 3, 4, 5, new_value), measured=False)
+    assert result.new_bytes == raw.replace(f"PR[16,6]={old} ".encode(),
+                                           f"PR[16,6]={new} ".encode())
