@@ -264,3 +264,23 @@ def test_a_value_keeps_the_program_s_parentheses(old, new_value, new):
     result = patch_frame(cf, "UF1", Pose.from_wpr(1, 2, 3, 4, 5, new_value), measured=False)
     assert result.new_bytes == raw.replace(f"PR[16,6]={old} ".encode(),
                                            f"PR[16,6]={new} ".encode())
+
+
+def test_a_frame_s_name_is_never_taken_from_another_frame_s_comment(tmp_path):
+    """UFRAME[1:UF2]=PR[16]: --frame UF2 names user frame 2, which the
+    program does not set; it must not patch UF1, whose comment is "UF2"."""
+    raw = program_text(sets_from(16, [1, 2, 3, 4, 5, 6], "UFRAME[1:UF2]"))
+    prog = tmp_path / "T.LS"
+    prog.write_bytes(raw)
+    sol = tmp_path / "s.json"
+    sol.write_text(json.dumps({"frame": {"x": 10, "y": 20, "z": 30, "a": 0, "b": 0, "c": 0},
+                               "accepted": True}))
+    res = run("patch", prog, "--frame", "UF2", "--measured", sol, "--in-place")
+    assert res.returncode == 2 and b"no frame named 'UF2'" in res.stderr, res.stderr
+    assert prog.read_bytes() == raw
+    # the comment still names the frame where it is no frame's name
+    raw = program_text(sets_from(16, [1, 2, 3, 4, 5, 6], "UFRAME[1:FIXTURE]"))
+    prog.write_bytes(raw)
+    res = run("patch", prog, "--frame", "fixture", "--measured", sol, "--in-place")
+    assert res.returncode == 0, res.stderr
+    assert parse(Document(prog.read_bytes(), str(prog))).frame("UF1").pose.t == (10, 20, 30)

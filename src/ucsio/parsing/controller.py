@@ -114,11 +114,17 @@ class ControllerFile:
     def matches(self, name: str) -> list[Frame]:
         """Frames called ``name`` (case-insensitive). A frame's own name wins
         over a label: a KUKA base labelled "BASE_DATA[1]" cannot take the
-        place of the real BASE_DATA[1]."""
+        place of the real BASE_DATA[1]. A FANUC frame's name (UF2, UT3@2)
+        names that frame only: where the file does not set it, a frame
+        commented "UF2" (UFRAME[1:UF2]) is not it."""
         key = name.strip().casefold()
         by_name = [f for f in self.frames if f.name.casefold() == key]
         if by_name:
             return by_name
+        if self.vendor == "fanuc":
+            from .fanuc import is_frame_name
+            if is_frame_name(key):
+                return []
         return [f for f in self.frames if f.label is not None and f.label.casefold() == key]
 
     def frame(self, name: str) -> Frame:

@@ -46,6 +46,14 @@ def frame_name(ftype: str, number, group: int = 1) -> str:
     return prefix + number + ("" if group == 1 else f"@{group}")
 
 
+def is_frame_name(name: str) -> bool:
+    """Whether ``name`` has the form of a frame's name (UF3, ut2, UF3@2,
+    UF[R[9]])."""
+    import re
+    return re.fullmatch(r"\s*u[ft]\s*(?:[0-9]+|\[.*\])\s*(?:@\s*[0-9]+)?\s*", name,
+                        re.I | re.S) is not None
+
+
 def make_frame(doc: Document, ftype: str, number, group: int, line: int,
                numbers: dict[str, Number] | None, values: dict[str, float] | None = None,
                label: str | None = None, info: dict | None = None,
