@@ -284,3 +284,81 @@ def test_a_frame_s_name_is_never_taken_from_another_frame_s_comment(tmp_path):
     res = run("patch", prog, "--frame", "fixture", "--measured", sol, "--in-place")
     assert res.returncode == 0, res.stderr
     assert parse(Document(prog.read_bytes(), str(prog))).frame("UF1").pose.t == (10, 20, 30)
+
+
+# -- the reviewed copy of a listing ------------------------------------------------------------
+from fanuc_cell import sysframe  # noqa: E402
+
+extreme = st.one_of(st.floats(-5000, 5000), st.sampled_from(
+    [-10000.0, 99999.999, -99999.999, 100000.0, -123456.789, 0.0004, -0.0004, 0.0]))
+listing_target = st.tuples(extreme, extreme, extreme,
+                           st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0])),
+                           st.one_of(st.floats(-90, 90), st.sampled_from([90.0, -90.0])),
+                           st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0])))
+_FIELD = re.compile(rb"([XYZWPR]):(\s*)(\S+)")
+
+
+@settings(max_examples=200, **SETTINGS)
+@given(st.dictionaries(st.tuples(st.integers(1, 2), st.integers(1, 5)), values6, max_size=4),
+       st.dictionaries(st.tuples(st.integers(1, 2), st.integers(1, 5)), values6, max_size=3),
+       st.sampled_from(["UF", "UT"]), st.integers(1, 5), st.integers(1, 2), listing_target,
+       st.sampled_from(["\r\n", "\n"]))
+def test_a_listing_copy_changes_that_entry_s_numbers_only(uf, ut, kind, k, g, target, nl):
+    raw = sysframe(uf, ut, groups=2, n_uf=5, n_ut=5).replace("\r\n", nl).encode()
+    name = f"{kind}{k}" + ("" if g == 1 else f"@{g}")
+    cf = parse(Document(raw, "sysframe.va"), beside=False)
+    before = {f.name: f.pose for f in cf.frames}
+    frame = cf.frame(name)
+    pose = Pose.from_wpr(*target)
+    if kind == "UT":
+        result = patch_tcp(cf, name, target[:3])
+        want = (*target[:3], frame.info["w"], frame.info["p"], frame.info["r"])
+    else:
+        result = patch_frame(cf, name, pose)
+        want = target
+    new = result.new_bytes
+    a, b = raw.split(b"\n"), new.split(b"\n")
+    assert len(a) == len(b)
+    value_lines = {frame.line + 1, frame.line + 2}       # X Y Z, W P R (1-based: +2, +3)
+    for i, (x, y) in enumerate(zip(a, b)):
+        if x == y:
+            continue
+        assert i in value_lines, (i, x, y)
+        fx, fy = _FIELD.findall(x), _FIELD.findall(y)
+        assert [f[0] for f in fx] == [f[0] for f in fy]
+        assert _FIELD.sub(b"", x) == _FIELD.sub(b"", y)      # the blanks between fields
+        for (_, sx, vx), (_, sy, vy) in zip(fx, fy):
+            assert len(sy) >= 1 and len(sx + vx) <= len(sy + vy)
+            assert len(sy + vy) == len(sx + vx) or len(sy) == 1   # widened only where it must
+    # the fast path and the tree of every byte read the same frames
+    fast = parse(Document(new, "sysframe.va"), beside=False)
+    whole = parse(Document(new, "sysframe.va"), full=True, beside=False)
+    assert [(f.name, f.pose, f.line) for f in fast.frames] == \
+        [(f.name, f.pose, f.line) for f in whole.frames]
+    assert_pose(fast.frame(name).pose, *want)
+    for f in fast.frames:
+        if f.name != name:
+            assert f.pose == before[f.name], f.name
+
+
+@pytest.mark.parametrize("how", ["same", "dot", "symlink", "hardlink"])
+def test_a_listing_is_not_written_over_itself_through_o(tmp_path, how):
+    """-o OUT is a reviewed copy; OUT naming the listing itself (its path, a
+    link to it) would be --in-place, which a listing refuses."""
+    from conftest import FIXTURES
+    va = tmp_path / "sysframe.va"
+    va.write_bytes((FIXTURES / "fanuc" / "sysframe_comment.va").read_bytes())
+    before = va.read_bytes()
+    sol = tmp_path / "s.json"
+    sol.write_text(json.dumps({"frame": {"x": 10, "y": 20, "z": 30, "a": 0, "b": 0, "c": 0},
+                               "accepted": True}))
+    out = {"same": va, "dot": tmp_path / "." / "sysframe.va", "symlink": tmp_path / "l.va",
+           "hardlink": tmp_path / "h.va"}[how]
+    if how == "symlink":
+        out.symlink_to(va)
+    elif how == "hardlink":
+        os.link(va, out)
+    res = run("patch", va, "--frame", "UF1", "--measured", sol, "-o", out)
+    assert res.returncode == 2 and b"sysframe.va" in res.stderr and b"-o" in res.stderr, \
+        res.stderr
+    assert va.read_bytes() == before

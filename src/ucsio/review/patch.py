@@ -1063,6 +1063,14 @@ def _same_on_disk(path: str, doc: Document) -> bool:
         return False
 
 
+def _same_file(a: str, b: str) -> bool:
+    """Whether paths ``a`` and ``b`` are one file (a link, another spelling)."""
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
 def save(result: PatchResult, path: str | os.PathLike | None = None,
          backup: bool = False) -> str:
     """Write a planned patch: to ``path`` (``-o OUT``), or over the source file
@@ -1077,6 +1085,10 @@ def save(result: PatchResult, path: str | os.PathLike | None = None,
                          "controller does not load it: not patched in place; -o OUT writes a "
                          "reviewed copy", file=src)
     target = write_target(path if path is not None else src)
+    if path is not None and result.frame.vendor == "fanuc" and is_listing(result.frame) \
+            and _same_file(target, src):
+        raise UcsioError(f"-o {os.fspath(path)} is the listing itself: a .va listing is not "
+                         "patched in place; -o OUT writes a reviewed copy elsewhere", file=src)
 
     def unchanged() -> None:
         if not _same_on_disk(src, result.document):
