@@ -362,3 +362,41 @@ def test_a_listing_is_not_written_over_itself_through_o(tmp_path, how):
     assert res.returncode == 2 and b"sysframe.va" in res.stderr and b"-o" in res.stderr, \
         res.stderr
     assert va.read_bytes() == before
+
+
+# -- ucsio program ---------------------------------------------------------------------------------
+def test_a_register_in_use_in_another_group_is_in_use(tmp_path):
+    """A position register is one register for every group (posreg.va lists
+    [g,n] for each, the comment on group 1's): PR[5] with a value or a
+    comment in group 1 is in use for a group-2 program too, and the
+    register --posreg picks is unused in every group."""
+    from fanuc_cell import registers
+    from ucsio.review.program import program
+    posreg = tmp_path / "posreg.va"
+    posreg.write_text(registers([(1, 5, "", (1, 2, 3, 0, 0, 0)), (1, 20, "PERCH", None),
+                                 (2, 19, "", {"J1": 1.0}), (1, 18, "", None)], groups=2, n=20),
+                      newline="")
+    pose = Pose.from_wpr(1, 2, 3, 0, 0, 0)
+    for g, pr in ((2, 5), (2, 20), (1, 19)):
+        with pytest.raises(UcsioError) as err:
+            program(pose, "UF3", group=g, pr=pr, posreg=str(posreg))
+        assert f"PR[{pr}]" in err.value.message and "in use" in err.value.message or \
+            "holds" in err.value.message, err.value.message
+    for g in (1, 2):
+        made = program(pose, "UF3", group=g, posreg=str(posreg))
+        assert made.pr == 18, (g, made.pr)
+    assert program(pose, "UF3", group=2, pr=18, posreg=str(posreg)).pr == 18
+
+
+def test_the_corpus_posreg_gives_group_2_a_register_free_in_group_1(tmp_path):
+    from conftest import corpus_file
+    from ucsio.review.program import program
+    from ucsio.parsing.va import position_registers
+    posreg = corpus_file("fanuc", "UB10200_RBT01__posreg.va")
+    regs = position_registers(Document.read(str(posreg)))
+    made = program(Pose.from_wpr(1, 2, 3, 0, 0, 0), "UF3@2", posreg=str(posreg))
+    for g in (1, 2):
+        e = regs[(g, made.pr)]
+        assert e.uninit and not (e.comment or "").strip(), (g, made.pr, e.comment)
+    with pytest.raises(UcsioError):          # PR[16]: the register tooldata...ls sets frames from
+        program(Pose.from_wpr(1, 2, 3, 0, 0, 0), "UF3@2", pr=16, posreg=str(posreg))

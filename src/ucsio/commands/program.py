@@ -14,8 +14,9 @@ with W, P, R from --wpr (default 0, 0, 0); a solution whose TCP was given
 is refused. --group g (or UFk@g) makes g the program's DEFAULT_GROUP.
 
 The register: --pr N, or --posreg posreg.va, from which the highest-numbered
-register that is Uninitialized and has no comment is taken; with both, a
-PR[N] that the listing shows in use (a value or a comment) is refused;
+register that is Uninitialized and has no comment in every group is taken
+(a register is one for all groups); with both, a PR[N] that the listing
+shows in use (a value or a comment, in any group) is refused;
 with neither, an error. Check that no program of the cell uses it.
 
 Without -o the program goes to standard output; -o OUT.LS writes it

@@ -120,10 +120,13 @@ def check_comment(comment: str | None) -> str | None:
 
 def unused_register(posreg: str, group: int) -> int:
     """The highest-numbered position register of ``group`` that ``posreg``
-    (posreg.va) shows unused: Uninitialized and without a comment (the
-    highest: programs number their own from the bottom up)."""
+    (posreg.va) shows unused: Uninitialized and without a comment in every
+    group (the highest: programs number their own from the bottom up). A
+    register is one for all groups: posreg.va lists its part of each group
+    ([1,n], [2,n]) and its comment on group 1's, so PR[n] with a value or a
+    name in group 1 is in use for a group-2 program too."""
     regs = _registers(posreg)
-    free = [n for (g, n), e in regs.items() if g == group and _unused(e)]
+    free = [n for (g, n), e in regs.items() if g == group and _unused_everywhere(regs, n)]
     if not free:
         raise UcsioError(f"no unused position register of group {group} (Uninitialized, without "
                          "a comment): give --pr N", file=posreg)
@@ -146,21 +149,28 @@ def _unused(entry) -> bool:
     return bool(entry.uninit) and not (entry.comment or "").strip()
 
 
+def _unused_everywhere(regs: dict, n: int) -> bool:
+    return all(_unused(e) for (g, k), e in regs.items() if k == n)
+
+
 def check_register(posreg: str, group: int, pr: int) -> None:
     """--pr N with --posreg: refused where the listing shows PR[N] in use
-    (a value or a comment), or has no such register."""
+    (a value or a comment, in any group: ``unused_register``), or has no
+    such register."""
     regs = _registers(posreg)
     entry = regs.get((group, pr))
     if entry is None:
         size = max((n for (g, n) in regs if g == group), default=0)
         raise UcsioError(f"--pr {pr}: posreg.va has no PR[{pr}] in group {group} (1...{size})",
                          file=posreg)
-    if not _unused(entry):
-        what = (f"comment {entry.comment.strip()!r}" if (entry.comment or "").strip()
-                else "a value")
-        raise UcsioError(f"--pr {pr}: PR[{pr}] holds {what} in this posreg.va: the program would "
-                         "overwrite it; choose another --pr (or leave it out to take an unused "
-                         "one)", file=posreg)
+    for (g, n), e in sorted(regs.items(), key=lambda item: (item[0][0] != group, item[0])):
+        if n != pr or _unused(e):
+            continue
+        what = (f"comment {e.comment.strip()!r}" if (e.comment or "").strip() else "a value")
+        where = "" if g == group else f" (group {g}: a register is one for every group)"
+        raise UcsioError(f"--pr {pr}: PR[{pr}] holds {what} in this posreg.va{where}: the "
+                         "program would overwrite it; choose another --pr (or leave it out to "
+                         "take an unused one)", file=posreg)
 
 
 def make_program(pose: Pose, kind: str, number: int, group: int, pr: int, *,
