@@ -400,3 +400,21 @@ def test_the_corpus_posreg_gives_group_2_a_register_free_in_group_1(tmp_path):
         assert e.uninit and not (e.comment or "").strip(), (g, made.pr, e.comment)
     with pytest.raises(UcsioError):          # PR[16]: the register tooldata...ls sets frames from
         program(Pose.from_wpr(1, 2, 3, 0, 0, 0), "UF3@2", pr=16, posreg=str(posreg))
+
+
+@pytest.mark.parametrize("frame, group", [("UF3@0", None), ("UF3", 0), ("UT1@0", 0),
+                                          ("UF3", -1), ("UF3@9", None)])
+def test_a_group_outside_1_to_8_is_refused_not_taken_as_group_1(frame, group):
+    from ucsio.review.program import parse_frame
+    with pytest.raises(UcsioError) as err:
+        parse_frame(frame, group)
+    assert "group 1...8" in err.value.message
+
+
+def test_ucsio_program_with_group_0_writes_nothing(tmp_path):
+    sol = tmp_path / "s.json"
+    sol.write_text(json.dumps({"frame": {"x": 10, "y": 20, "z": 30, "a": 0, "b": 0, "c": 0},
+                               "accepted": True}))
+    res = run("program", sol, "--frame", "UF3@0", "--pr", "5", "-o", tmp_path / "SET.LS")
+    assert res.returncode == 2 and b"group 1...8" in res.stderr
+    assert sorted(os.listdir(tmp_path)) == ["s.json"]

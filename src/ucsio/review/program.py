@@ -83,7 +83,7 @@ def parse_frame(name: str, group: int | None) -> tuple[str, int, int]:
     at = int(m.group(3)) if m.group(3) else None
     if at is not None and group is not None and at != group:
         raise UcsioError(f"--frame {name!r} names group {at}, --group says {group}")
-    g = at or group or 1
+    g = at if at is not None else group if group is not None else 1    # 0 is no group
     if not 1 <= number <= 999 or not 1 <= g <= 8:
         raise UcsioError(f"--frame {name!r}: frame number 1...999 and group 1...8")
     return kind, number, g
