@@ -418,3 +418,104 @@ def test_ucsio_program_with_group_0_writes_nothing(tmp_path):
     res = run("program", sol, "--frame", "UF3@0", "--pr", "5", "-o", tmp_path / "SET.LS")
     assert res.returncode == 2 and b"group 1...8" in res.stderr
     assert sorted(os.listdir(tmp_path)) == ["s.json"]
+
+
+@settings(max_examples=200, **SETTINGS)
+@given(st.tuples(*[st.one_of(st.floats(-1e5, 1e5), st.sampled_from([1e5, -1e5, 99999.9996,
+                                                                    -0.0004, 0.0005]))] * 3,
+                 st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0, 179.9995,
+                                                                  -179.9995])),
+                 st.one_of(st.floats(-90, 90), st.sampled_from([90.0, -90.0, 89.9995,
+                                                                -89.9995])),
+                 st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0, 179.9995]))),
+       st.sampled_from(["UF1", "UF9@2", "UF999", "UF2@8"]), st.integers(1, 9999))
+def test_a_new_program_at_the_extremes_reads_back(values, frame, pr):
+    from ucsio.review.program import program
+    made = program(Pose.from_wpr(*values), frame, pr=pr, comment="FIX 1")
+    cf = parse(Document(made.data, "SET.LS"), full=True)
+    (f,) = cf.frames
+    assert f.name == frame and f.label == "FIX 1" and cf.lints == []
+    assert_pose(f.pose, *values)
+    assert all(abs(v) <= 180 for k, v in f.info.items() if k in "wpr")
+    assert made.text.count("\r\n") == made.text.count("\n")
+    assert re.search(rf"\bPR\[{pr}\]=LPOS-LPOS ", made.text)
+
+
+# -- measurements from FANUC positions ----------------------------------------------------------
+r3 = st.floats(-2000, 2000).map(lambda v: round(v, 3))
+a3 = st.floats(-179.9, 179.9).map(lambda v: round(v, 3))
+p3 = st.floats(-89.9, 89.9).map(lambda v: round(v, 3))
+xyzwpr3 = st.tuples(r3, r3, r3, a3, p3, a3)
+
+
+@settings(max_examples=120, **SETTINGS)
+@given(xyzwpr3, xyzwpr3, xyzwpr3, xyzwpr3, st.integers(0, 3), st.integers(0, 3),
+       st.lists(xyzwpr3, min_size=1, max_size=3), st.booleans())
+def test_a_position_is_uf_p_ut_inverse_of_group_1_s_frames(uf, ut, decoy_uf, decoy_ut, u, t,
+                                                            points, with_gp2):
+    """The flange in world of a position taught in UF u with UT t is
+    UF[u]·P·UT[t]⁻¹ with group 1's frames; group 2's frames of the same
+    numbers (the decoys) and a GP2 block of the position play no part."""
+    import tempfile
+
+    from fanuc_cell import position, program
+    from ucsio.readers.robot import read_robot
+    frames_uf = {(1, k): uf if k == u else decoy_ut for k in (1, 2, 3)}
+    frames_ut = {(1, k): ut if k == t else decoy_uf for k in (1, 2, 3)}
+    frames_uf.update({(2, k): decoy_uf for k in (1, 2, 3)})
+    frames_ut.update({(2, k): decoy_ut for k in (1, 2, 3)})
+    pts = []
+    for i, v in enumerate(points, 1):
+        groups = [(1, u, t, v)] + ([(2, (u + 1) % 4, (t + 2) % 4, decoy_uf)] if with_gp2
+                                    else [])
+        pts.append(position(i, groups, decimals=3))
+    with tempfile.TemporaryDirectory() as d:
+        va, ls = os.path.join(d, "sysframe.va"), os.path.join(d, "MEAS.LS")
+        with open(va, "w", newline="") as fh:
+            fh.write(sysframe(frames_uf, frames_ut, groups=2, n_uf=3, n_ut=3))
+        with open(ls, "w", newline="") as fh:
+            fh.write(program("MEAS", pts))
+        got = read_robot(ls, config=va)
+    U = matrix(*uf) if u else np.eye(4)
+    T = matrix(*ut) if t else np.eye(4)
+    for rp, v in zip(got.poses, points):
+        assert rp.problem is None, rp.problem
+        want = U @ matrix(*v) @ np.linalg.inv(T)
+        assert np.allclose(rp.flange[:3, 3], want[:3, 3], atol=1e-6)
+        assert np.allclose(rp.flange[:3, :3], want[:3, :3], atol=1e-9)
+
+
+def solution_file(path, x, y, z, w, p, r):
+    """A SOLUTION.json whose frame is X Y Z W P R (a, b, c = r, p, w: scipy's)."""
+    c, b, a = Rotation.from_matrix(matrix(x, y, z, w, p, r)[:3, :3]).as_euler("xyz",
+                                                                               degrees=True)
+    path.write_text(json.dumps({"frame": {"x": x, "y": y, "z": z, "a": a, "b": b, "c": c},
+                                "accepted": True}))
+    return path
+
+
+@pytest.mark.parametrize("group, nl", [(1, "\r\n"), (2, "\n")])
+def test_patch_in_place_then_frames_gives_the_solution(tmp_path, group, nl):
+    mn = sets_from(16, ["(-1100.3)", "((.5))", "770", "0", "(-.04)", "((-90))"],
+                   "UFRAME[3:FIX]") + sets_from(17, [1, 2, 3, 4, 5, 6], "UFRAME[4]")
+    raw = program_text(mn, group).replace(b"\r\n", nl.encode())
+    prog = tmp_path / "SETUF.LS"
+    prog.write_bytes(raw)
+    target = (1234.5678, -0.25, 99999.999, -179.9996, 89.9996, 0.0004)
+    sol = solution_file(tmp_path / "s.json", *target)
+    name = "UF3" if group == 1 else "UF3@2"
+    res = run("patch", prog, "--frame", name, "--measured", sol, "--in-place")
+    assert res.returncode == 0, res.stderr
+    listed = {f["name"]: f for f in json.loads(run("frames", prog, "--json").stdout)["frames"]}
+    f = listed[name]
+    assert f["group"] == group and f["label"] == "FIX"
+    assert_pose(Pose.from_wpr(f["x"], f["y"], f["z"], f["w"], f["p"], f["r"]), *target)
+    other = "UF4" if group == 1 else "UF4@2"
+    assert [listed[other][k] for k in ("x", "y", "z", "w", "p", "r")] == [1, 2, 3, 4, 5, 6]
+    only_values_changed(raw, prog.read_bytes(), [4 + i for i in range(1, 7)])
+    # the other group's name is no frame of this program: refused, nothing written
+    after = prog.read_bytes()
+    wrong = "UF3@2" if group == 1 else "UF3"
+    res = run("patch", prog, "--frame", wrong, "--measured", sol, "--in-place")
+    assert res.returncode == 2 and prog.read_bytes() == after
+    assert res.stderr.decode().startswith(f"ucsio: {prog}"), res.stderr
