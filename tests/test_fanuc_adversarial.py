@@ -519,3 +519,24 @@ def test_patch_in_place_then_frames_gives_the_solution(tmp_path, group, nl):
     res = run("patch", prog, "--frame", wrong, "--measured", sol, "--in-place")
     assert res.returncode == 2 and prog.read_bytes() == after
     assert res.stderr.decode().startswith(f"ucsio: {prog}"), res.stderr
+
+
+def test_a_config_program_that_sets_a_frame_twice_differently_is_refused(tmp_path):
+    """--config PROG.LS setting UF2 to two different values: which one the
+    position was taught in is not known; ucsio took the first, silently."""
+    from fanuc_cell import position, program
+    from ucsio.readers.robot import read_robot
+    cfg = tmp_path / "cfg.ls"
+    cfg.write_bytes(program_text(sets_from(16, [100, 0, 0, 0, 0, 0], "UFRAME[2]")
+                                 + sets_from(17, [200, 0, 0, 0, 0, 0], "UFRAME[2]")))
+    meas = tmp_path / "meas.ls"
+    meas.write_text(program("MEAS", [position(1, [(1, 2, 0, (1, 2, 3, 0, 0, 0))],
+                                               decimals=3)]), newline="")
+    (rp,) = read_robot(str(meas), config=str(cfg)).poses
+    assert rp.flange is None and "twice with different values" in rp.problem.message, rp.problem
+    assert rp.problem.line is not None and rp.problem.col is not None
+    # set twice alike: one frame
+    cfg.write_bytes(program_text(sets_from(16, [100, 0, 0, 0, 0, 0], "UFRAME[2]")
+                                 + sets_from(17, [100, 0, 0, 0, 0, 0], "UFRAME[2]")))
+    (rp,) = read_robot(str(meas), config=str(cfg)).poses
+    assert rp.problem is None and np.allclose(rp.flange[:3, 3], (101, 2, 3))

@@ -331,7 +331,19 @@ class _FanucFrames:
         f = found[0]
         if f.pose is None:
             raise error(f"{who}: {field}, but {name} ({f.file}:{f.line}) has no value")
+        for g in found[1:]:         # a program that sets it twice: alike, or not known
+            if g.pose is None or not _same_pose(g.pose, f.pose):
+                raise error(f"{who}: {field}, but {self.config} sets {name} twice with "
+                            f"different values (lines {f.line} and {g.line}): which one the "
+                            "position was taught in is not known")
         return f.pose
+
+
+def _same_pose(a: Pose, b: Pose) -> bool:
+    """Equal at a FANUC file's written precision (0.001 mm, 0.001 deg)."""
+    from ..geometry import rotations as rot
+    return all(abs(u - v) <= 1e-6 for u, v in zip(a.t, b.t)) and \
+        rot.quat_angle(a.q, b.q) <= 1e-6
 
 
 def _fanuc_flange(xyzwpr, user: Pose | None, tool: Pose | None) -> np.ndarray:
