@@ -620,3 +620,29 @@ def test_object_frame_under_a_user_frame_without_value_is_refused_even_forced(tm
         err = capsys.readouterr().err
         assert "no literal value" in err and err.count("\n") == 1
     assert mod.read_bytes() == before
+
+
+@settings(max_examples=400, derandomize=True, deadline=None)
+@given(st.lists(st.sampled_from("abcdef"), max_size=12), st.lists(st.sampled_from("abcdefgh"),
+                                                                  max_size=12),
+       st.integers(0, 3), st.integers(0, 50))
+def test_a_patch_s_hunk_is_the_one_difflib_writes(a, b, n, shift):
+    """The hunk written without difflib (a patch's rewritten lines, none of
+    which the other side holds) is byte for byte difflib's, header included;
+    where lines could be matched, difflib writes it."""
+    from ucsio.review.patch import _difflib_lines, common_ends, unified_lines
+
+    lo, hi = common_ends(a, b)
+    want = list(_difflib_lines(a, b, lo, hi, "a/x", "b/x", n, shift))
+    assert list(unified_lines(a, b, "a/x", "b/x", n, shift=shift)) == want
+
+
+@pytest.mark.parametrize("a, b", [(["c1", "c2", "X 1", "W 1", "c3"], ["c1", "c2", "X 2", "W 2", "c3"]),
+                                  (["c", "old"], ["c"]), ([], ["new"]), (["x"], ["y"]),
+                                  (["c", "a", "c"], ["c", "b", "c"])])
+def test_a_patch_s_usual_hunk_is_written_without_difflib(a, b):
+    from ucsio.review.patch import _difflib_lines, _one_hunk, common_ends
+
+    lo, hi = common_ends(a, b)
+    got = _one_hunk(a, b, lo, hi, "a/x", "b/x", 1, 7)
+    assert got is not None and got == list(_difflib_lines(a, b, lo, hi, "a/x", "b/x", 1, 7))

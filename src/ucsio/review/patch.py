@@ -791,6 +791,43 @@ def unified_lines(a: list[str], b: list[str], old_label: str, new_label: str, n:
     crawl on the thousands of equal lines of a listing (a sysframe.va's
     unset frames)."""
     lo, hi = common_ends(a, b)
+    hunk = _one_hunk(a, b, lo, hi, old_label, new_label, n, shift)
+    if hunk is not None:
+        return hunk
+    return _difflib_lines(a, b, lo, hi, old_label, new_label, n, shift)
+
+
+def _one_hunk(a: list[str], b: list[str], lo: int, hi: int, old_label: str, new_label: str,
+              n: int, shift: int) -> list[str] | None:
+    """The one hunk difflib writes where the lines that differ (between the
+    ``lo`` and ``hi`` lines the two share at their ends) hold no line found
+    anywhere on the other side: what a patch's rewritten numbers give. Its
+    matcher can then only pair the context, so the hunk is the context, the
+    old lines and the new ones (tests/test_patch.py holds it to difflib).
+    None where difflib must match; [] where nothing differs."""
+    old, new = a[lo:len(a) - hi], b[lo:len(b) - hi]
+    if not old and not new:
+        return []
+    before, after = min(n, lo), min(n, hi)
+    a_part, b_part = a[lo - before:len(a) - hi + after], b[lo - before:len(b) - hi + after]
+    if not set(old).isdisjoint(b_part) or not set(new).isdisjoint(a_part):
+        return None
+    start = shift + lo - before
+    return [f"--- {old_label}", f"+++ {new_label}",
+            f"@@ -{_range(start, len(a_part))} +{_range(start, len(b_part))} @@",
+            *(" " + line for line in a_part[:before]), *("-" + line for line in old),
+            *("+" + line for line in new), *(" " + line for line in a_part[len(a_part) - after:])]
+
+
+def _range(start: int, length: int) -> str:
+    """A hunk header's range as difflib writes it (0-based ``start``)."""
+    if length == 1:
+        return str(start + 1)
+    return f"{start + 1 if length else start},{length}"
+
+
+def _difflib_lines(a: list[str], b: list[str], lo: int, hi: int, old_label: str,
+                   new_label: str, n: int, shift: int):
     lo, hi = max(0, lo - n), max(0, hi - n)
     import difflib          # only where a diff is shown
 
