@@ -18,8 +18,7 @@ from ..errors import UcsioError
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("manifest", metavar="MANIFEST.toml",
                    help="[defaults] and [[entry]] tables: name, measurement, controller, frame, "
-                        "tcp or tool, threshold, min_points, tolerance, ... (README: Batch "
-                        "manifest)")
+                        "tcp or tool, threshold, min_points, tolerance, ... (docs/batch.md)")
     p.add_argument("--csv", metavar="FILE", default=None, help="write one row per entry")
     p.add_argument("--report", metavar="FILE.html", default=None,
                    help="write a self-contained HTML report (tables, inline SVG charts)")

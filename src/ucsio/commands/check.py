@@ -1,9 +1,9 @@
 """Parse every byte with the grammar, prove the byte-exact round trip, and lint
 (unnormalised quaternions, robot-held tools without mass, moving user frames,
 KUKA labels and references). Every finding names its code; --ignore CODE,...
-silences codes (the README lists them). Exit 1 when there is any warning or a
-failed round trip; an "info" (legal code worth knowing, such as a PERS whose
-value another module gives) does not fail the check.
+silences codes (docs/controllers.md lists them). Exit 1 when there is any
+warning or a failed round trip; an "info" (legal code worth knowing, such as a
+PERS whose value another module gives) does not fail the check.
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
 .prg .dat .va .dg .ls below it) or a .zip archive (members named
@@ -81,7 +81,7 @@ def ignored_codes(values: list[str]) -> frozenset:
             print(f"ucsio check: --ignore: {c!r} is retired ({RETIRED[c]}); it silences nothing",
                   file=sys.stderr)
         elif c not in LINT_CODES:
-            hint = did_you_mean(c, LINT_CODES) or " (the README lists the codes)"
+            hint = did_you_mean(c, LINT_CODES) or " (docs/controllers.md lists the codes)"
             raise UsageError(f"ucsio check: --ignore: no lint code {c!r}{hint}")
     return frozenset(codes)
 

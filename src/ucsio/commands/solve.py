@@ -23,8 +23,8 @@ from ..files import atomic_write_text
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("measurement", metavar="MEAS.csv", nargs="?", default=None,
                    help="measurement CSV: point, laser_x/y/z, robot_x/y/z, the flange orientation "
-                        "(robot_a/b/c, robot_q1..q4 or robot_w/p/r), weight (README: "
-                        "Measurement files); - for standard input; or --laser and --robot")
+                        "(robot_a/b/c, robot_q1..q4 or robot_w/p/r), weight (docs/"
+                        "measurements.md); - for standard input; or --laser and --robot")
     add_source_options(p)
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z|solve", default=None,

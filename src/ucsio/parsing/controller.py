@@ -19,7 +19,7 @@ KUKA_SUFFIXES = {".dat", ".src", ".sub"}
 FANUC_SUFFIXES = {".va", ".dg", ".ls"}
 
 
-# Every code check can report, with what it means (README: "Lint codes").
+# Every code check can report, with what it means (docs/controllers.md: "Lint codes").
 # `check --ignore CODE` accepts exactly these.
 LINT_CODES = {
     # ABB RAPID
