@@ -238,6 +238,14 @@ def test_batch_entry_names_fanuc_files(cell, capsys):
     # simulated UF2 vs the measured UCS: the offset the cell was built with
     assert abs(e["dt_mean"] - np.mean(np.abs(cell.ucs[:3, 3] - cell.uf[:3, 3]))) < 1e-3
     assert e["points_moved"]["count"] == 8
+    # --patch-dir: the listing's reviewed copy, said to be one (as patch says)
+    code, out, err = cli(capsys, "batch", d / "m.toml", "--json", "--patch-dir", d / "out")
+    assert code == 0, (out, err)
+    e = json.loads(out)["entries"][0]
+    assert e["patched"] and any("does not load .va files" in w for w in e["warnings"])
+    original = (d / "sysframe.va").read_bytes().splitlines()
+    copy = (d / "out" / "sysframe.va").read_bytes().splitlines()
+    assert len(copy) == len(original) and sum(a != b for a, b in zip(original, copy)) == 2
 
 
 def test_plan_with_a_fanuc_program_and_taught_points(cell, capsys):

@@ -885,6 +885,10 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             if problem is None:
                 if what == "frame":
                     r.patched = str(target)
+                    # a FANUC listing's copy is for review: the controller
+                    # does not load .va files (patch says so too)
+                    r.warnings += [w for pr in planned for w in pr.warnings
+                                   if w == patcher.LISTING_WARNING and w not in r.warnings]
                 else:
                     r.tool_patched = str(target)
                 continue
