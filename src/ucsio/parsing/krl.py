@@ -126,12 +126,15 @@ _ELEMENT_LINE = regex.lazy(r"\n(" + _WS + r"*([A-Za-z_$][\w$]*)" + _WS + r"*([\[
                            r"*([0-9]+))?[^\n]*)")
 
 
-def outline(text: str) -> list[tuple[int, int]]:
+def outline(text: str, nl_text: str | None = None,
+            layout: list[tuple[int, int]] | None = None) -> list[tuple[int, int]]:
     """Spans (start, end) of the lines the frames depend on, in order; each
-    span is a line's content without its newline."""
+    span is a line's content without its newline. ``nl_text`` ("\n" +
+    text) and ``layout`` (``_layout_lines``) where the caller has them."""
     spans = []
     names = set(TABLES)
-    nl_text = "\n" + text           # offsets in nl_text are one more than in text
+    if nl_text is None:
+        nl_text = "\n" + text       # offsets in nl_text are one more than in text
     for m in _DECL_LINE.finditer(nl_text):
         spans.append((m.start(1) - 1, m.end(1) - 1))
         if m.group(2) is not None:
@@ -146,18 +149,24 @@ def outline(text: str) -> list[tuple[int, int]]:
         names.update(MACHINE_TABLES)
     mframes = []
     mdefs = []
+    # most element lines are of no table read here: the name decides first.
+    # Group 1 starts right after the match's "\n" and ends with the match, so
+    # the line's span in text is (m.start(), m.end() - 1).
+    append = spans.append
     for m in _ELEMENT_LINE.finditer(nl_text):
-        name = m.group(2).upper()
-        span = (m.start(1) - 1, m.end(1) - 1)
-        if machine and name == "MACHINE_FRAME_DAT":
-            mframes.append((span, m.group(1)))
+        name = m[2].upper()
+        if name in names:           # never a MACHINE_* name where ``machine``
+            s, e = m.span()
+            append((s, e - 1))
+        elif machine and name == "MACHINE_FRAME_DAT":
+            s, e = m.span()
+            mframes.append(((s, e - 1), m[1]))
         elif machine and name == "MACHINE_DEF":
-            mdefs.append((span, m.group(3) == "[" and m.group(4)))
-        elif name in names:
-            spans.append(span)
+            s, e = m.span()
+            mdefs.append(((s, e - 1), m[3] == "[" and m[4]))
     if mframes:
         spans += _machine_lines(mframes, mdefs)
-    spans += _layout_lines(text, nl_text)
+    spans += _layout_lines(text, nl_text) if layout is None else layout
     return sorted(set(spans))
 
 
