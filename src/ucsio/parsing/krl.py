@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import functools
 import re
+from bisect import bisect_right
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
@@ -270,22 +271,25 @@ _B = r"[ \t\f\r]*+"
 _PLAIN_NUMBER = r"[+-]?+(?:[0-9]++(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][+-]?+[0-9]++)?+"
 _PLAIN_FIELD = r"[A-Za-z_$][A-Za-z0-9_$]*[ \t\f\r]+" + _PLAIN_NUMBER
 _PLAIN_LINE = regex.lazy(
-    r"(?P<name>[A-Za-z_$][A-Za-z0-9_$]*)\[(?P<index>[0-9]{1,9}),?\]" + _B + "=" + _B
+    _B + r"(?P<name>[A-Za-z_$][A-Za-z0-9_$]*)\[(?P<index>[0-9]{1,9}),?\]" + _B + "=" + _B
     + r"(?P<value>\{" + _B + _PLAIN_FIELD + "(?:" + _B + "," + _B + _PLAIN_FIELD + ")*" + _B
     + r"\}|\"[^\"\n]*\"|#" + _B + r"[A-Za-z_$][A-Za-z0-9_$]*)" + _B + r"(?:;[^\n]*)?\Z")
 _PLAIN_FIELDS = regex.lazy(r"(?P<key>[A-Za-z_$][A-Za-z0-9_$]*)[ \t\f\r]+(?P<number>" + _PLAIN_NUMBER + ")")
 
 
-def _plain_statements(doc: Document, text: str, spans):
+def _plain_statements(doc: Document, text: str, spans, layout=None):
     """(statements read from their words, the spans left for the parser):
     the outline's element lines that _PLAIN_LINE matches, each made into
-    the statement and value the parser would give."""
+    the statement and value the parser would give. ``layout``: the set of
+    ``_layout_lines`` where the caller has it."""
     made: list[_Stmt] = []
     rest = []
     match = _PLAIN_LINE.match
-    layout = None
+    fields_in = _PLAIN_FIELDS.finditer
+    structs: dict[str, _Val] = {}  # value text -> the first line's _Val
+    starts = doc.line_starts
     for s, e in spans:
-        m = match(text, s + len(text[s:e]) - len(text[s:e].lstrip(" \t\f\r")), e)
+        m = match(text, s, e)
         if m is None or m.group("name").upper() in _KEYWORDS:
             rest.append((s, e))
             continue
@@ -294,25 +298,38 @@ def _plain_statements(doc: Document, text: str, spans):
         if (s, e) in layout:
             rest.append((s, e))
             continue
-        start = m.start()
+        start = m.start("name")
         st = _Stmt()
-        st.kind, st.delta, st.start, st.line = "assign", 0, start, doc.line_of(start)
+        # doc.line_of(start), without two calls a line
+        st.kind, st.delta, st.start, st.line = "assign", 0, start, bisect_right(starts, start)
         st.name = Token("NAME", m.group("name"), start, m.end("name"))
         st.index = [int(m.group("index"))]
         vs, ve = m.span("value")
         first = text[vs]
-        if first == "{":
+        if first == "{" and text[vs:ve] in structs:
+            # a value an earlier line has too (a config file's unset frames):
+            # its fields, moved here
+            v0 = structs[text[vs:ve]]
+            d = vs - v0.start
+            st.value = _Val("struct", {key: (_Name(n.value, n.start_pos + d),
+                                             _Val("number", fv.value, fv.start + d, fv.end + d,
+                                                  fv.text))
+                                       for key, (n, fv) in v0.value.items()}, vs, ve)
+            st.value.dups = [(key, at + d) for key, at in v0.dups]
+        elif first == "{":
             fields: dict[str, Any] = {}
             dups = []
-            for f in _PLAIN_FIELDS.finditer(text, vs, ve):
-                key = f.group("key").upper()
+            for f in fields_in(text, vs, ve):
+                word, number = f.group("key", "number")
+                key = word.upper()
+                at = f.start()
                 if key in fields:
-                    dups.append((key, f.start()))
-                number = f.group("number")
-                fields[key] = (_Name(f.group("key"), f.start()),
-                               _Val("number", float(number), f.start("number"), f.end(), number))
+                    dups.append((key, at))
+                ns, ne = f.span("number")
+                fields[key] = (_Name(word, at), _Val("number", float(number), ns, ne, number))
             st.value = _Val("struct", fields, vs, ve)
             st.value.dups = dups
+            structs[text[vs:ve]] = st.value
         elif first == '"':
             st.value = _Val("string", text[vs + 1:ve - 1], vs, ve)
         else:
@@ -321,7 +338,7 @@ def _plain_statements(doc: Document, text: str, spans):
     return made, rest
 
 
-def _shared_parse(doc: Document, text: str, spans):
+def _shared_parse(doc: Document, text: str, spans, layout=None):
     """(statements, tree) of the masked text, the parser reading each repeated
     value once (_shared_values); None when that is not possible here (a
     syntax error, or a shared value not read as an assignment): the caller
@@ -330,11 +347,13 @@ def _shared_parse(doc: Document, text: str, spans):
     A later line with a repeated value whose left-hand side is a plain
     ``NAME[n]`` or ``NAME[n,]`` (a config file's 32 unset bases) is not
     parsed at all: its statement is made here from its words, the value the
-    first line's; others are parsed with the value as a placeholder 0."""
+    first line's; others are parsed with the value as a placeholder 0.
+    ``layout``: the set of ``_layout_lines`` where the caller has it."""
     placeholders, shared = _shared_values(text, spans)
     if not shared:
         return None
-    layout = set(_layout_lines(text, "\n" + text))
+    if layout is None:
+        layout = set(_layout_lines(text, "\n" + text))
     line_of = {s: (s, e) for s, e in spans}
     made: list[_Stmt] = []
     blank: list[tuple[int, int]] = []
@@ -674,9 +693,12 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             # Lark first: its positioned message (or, were the two to differ, the tree)
             return _whole(doc, text, lark_first=True)
     # the frame lines and the layout lines (outline), the rest blanked out
-    spans = outline(text)
-    plain, rest = _plain_statements(doc, text, spans)
-    got = _shared_parse(doc, text, rest)
+    nl_text = "\n" + text
+    layout = _layout_lines(text, nl_text)
+    spans = outline(text, nl_text, layout)
+    layout_set = set(layout)
+    plain, rest = _plain_statements(doc, text, spans, layout_set)
+    got = _shared_parse(doc, text, rest, layout_set)
     if got is None:
         tree = _parse(doc, masked(text, rest), "file")
         stmts = _statements(tree, doc)
