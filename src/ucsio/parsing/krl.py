@@ -778,6 +778,7 @@ class _Interpreter:
     def __init__(self, doc: Document, cf: ControllerFile):
         self.doc = doc
         self.cf = cf
+        self.poses: dict[tuple, Pose] = {}     # X..C -> Pose.from_abc of them
 
     # -- helpers --
     def int_value(self, value: float, text: str, pos: int) -> int:
@@ -978,7 +979,14 @@ class _Interpreter:
                           f"{name}: component{plural} {', '.join(missing)} not given (undefined "
                           "until set); listed without numbers, not patchable", severity="info")
         else:
-            fr.pose = Pose.from_abc(*(nums[c].value for c in COMPONENTS))
+            # one Pose for each distinct value (a config file's many unset
+            # frames): a Pose is never changed once made. -0.0 and 0.0 are
+            # one key, and from_abc makes the same Pose of both (its + 0.0)
+            key = tuple([nums[c].value for c in COMPONENTS])
+            pose = self.poses.get(key)
+            if pose is None:
+                pose = self.poses[key] = Pose.from_abc(*key)
+            fr.pose = pose
         return fr
 
     def table_entry(self, fr: Frame, key: str, n: int, labels, types, loads, mframes,
