@@ -826,6 +826,7 @@ class _Interpreter:
         mframes: dict[int, dict] = {}
         machines: dict[int, dict] = {}
         elements = []          # (stmt, key) for FRAME elements / FRAME scalar assignments
+        load_of: dict[int, Any] = {}    # id(value node) -> _load of it (None: not a struct)
         for s in stmts:
             if s.kind != "assign":
                 continue
@@ -848,9 +849,15 @@ class _Interpreter:
                     continue
                 types[(key[:4], one)] = (v.value, v.start)
             elif key == "LOAD_DATA" and one is not None:
-                v = _value(s.value, s.delta)
-                if v.kind == "struct":
-                    loads[one] = _load(v)
+                # a value shared by several lines (_shared_parse: the unset
+                # loads) is one node: _load reads no position, so read it once
+                got = load_of.get(id(s.value), load_of)
+                if got is load_of:
+                    v = _value(s.value, s.delta)
+                    got = load_of[id(s.value)] = _load(v) if v.kind == "struct" else None
+                if got is not None:
+                    loads[one] = {k: dict(x) if isinstance(x, dict) else x
+                                  for k, x in got.items()}
             elif key == "MACHINE_FRAME_DAT" and one is not None:
                 v = _value(s.value, s.delta)
                 if v.kind == "struct":
