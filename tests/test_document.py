@@ -53,3 +53,23 @@ def test_cr_only_files_count_lines_at_cr():
     doc = Document(b"MODULE m\r  PERS pose p:=[[1,2,3],[1,0,0,0]];\rENDMODULE\r")
     assert doc.line_col(doc.text.index("PERS")) == (2, 3)
     assert doc.line_col(doc.text.index("ENDMODULE")) == (3, 1)
+
+
+def test_masked_keeps_spans_and_newlines_only():
+    """masked() (one translate for ASCII text, line by line otherwise) against
+    the plain rule: inside a span the text, elsewhere a space, LF kept."""
+    import random
+
+    from ucsio.parsing.document import masked
+
+    rng = random.Random(7)
+    for alphabet in ("ab \t\r\n;{}", "ab \n\u00e9\u20ac\r"):     # ASCII, then not
+        for _ in range(300):
+            text = "".join(rng.choice(alphabet) for _ in range(rng.randrange(0, 40)))
+            cuts = sorted(rng.randrange(0, len(text) + 1) for _ in range(2 * rng.randrange(0, 4)))
+            spans = list(zip(cuts[::2], cuts[1::2]))
+            if spans and rng.random() < 0.3:
+                spans.insert(1, spans[0])                  # a line matched twice
+            keep = {i for s, e in spans for i in range(s, e)}
+            want = "".join(c if i in keep or c == "\n" else " " for i, c in enumerate(text))
+            assert masked(text, spans) == want, (text, spans)
