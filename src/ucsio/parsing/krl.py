@@ -46,7 +46,6 @@ from __future__ import annotations
 
 import functools
 import re
-from bisect import bisect_right
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
@@ -277,17 +276,19 @@ _PLAIN_LINE = regex.lazy(
 _PLAIN_FIELDS = regex.lazy(r"(?P<key>[A-Za-z_$][A-Za-z0-9_$]*)[ \t\f\r]+(?P<number>" + _PLAIN_NUMBER + ")")
 
 
-def _plain_statements(doc: Document, text: str, spans, layout=None):
+def _plain_statements(doc: Document, text: str, spans, layout=None, line_of=None):
     """(statements read from their words, the spans left for the parser):
     the outline's element lines that _PLAIN_LINE matches, each made into
     the statement and value the parser would give. ``layout``: the set of
-    ``_layout_lines`` where the caller has it."""
+    ``_layout_lines`` where the caller has it; ``line_of``: a _Lines of
+    ``text``, or doc.line_of."""
     made: list[_Stmt] = []
     rest = []
     match = _PLAIN_LINE.match
     fields_in = _PLAIN_FIELDS.finditer
     structs: dict[str, _Val] = {}  # value text -> the first line's _Val
-    starts = doc.line_starts
+    if line_of is None:
+        line_of = doc.line_of
     for s, e in spans:
         m = match(text, s, e)
         if m is None or m.group("name").upper() in _KEYWORDS:
@@ -300,8 +301,7 @@ def _plain_statements(doc: Document, text: str, spans, layout=None):
             continue
         start = m.start("name")
         st = _Stmt()
-        # doc.line_of(start), without two calls a line
-        st.kind, st.delta, st.start, st.line = "assign", 0, start, bisect_right(starts, start)
+        st.kind, st.delta, st.start, st.line = "assign", 0, start, line_of(start)
         st.name = Token("NAME", m.group("name"), start, m.end("name"))
         st.index = [int(m.group("index"))]
         vs, ve = m.span("value")
@@ -338,7 +338,7 @@ def _plain_statements(doc: Document, text: str, spans, layout=None):
     return made, rest
 
 
-def _shared_parse(doc: Document, text: str, spans, layout=None):
+def _shared_parse(doc: Document, text: str, spans, layout=None, lines=None):
     """(statements, tree) of the masked text, the parser reading each repeated
     value once (_shared_values); None when that is not possible here (a
     syntax error, or a shared value not read as an assignment): the caller
@@ -348,10 +348,13 @@ def _shared_parse(doc: Document, text: str, spans, layout=None):
     ``NAME[n]`` or ``NAME[n,]`` (a config file's 32 unset bases) is not
     parsed at all: its statement is made here from its words, the value the
     first line's; others are parsed with the value as a placeholder 0.
-    ``layout``: the set of ``_layout_lines`` where the caller has it."""
+    ``layout``: the set of ``_layout_lines`` where the caller has it;
+    ``lines``: a _Lines of ``text``, or doc.line_of."""
     placeholders, shared = _shared_values(text, spans)
     if not shared:
         return None
+    if lines is None:
+        lines = doc.line_of
     if layout is None:
         layout = set(_layout_lines(text, "\n" + text))
     line_of = {s: (s, e) for s, e in spans}
@@ -371,7 +374,7 @@ def _shared_parse(doc: Document, text: str, spans, layout=None):
         if m.end() != pos:
             continue
         st = _Stmt()
-        st.kind, st.delta, st.start, st.line = "assign", delta, start, doc.line_of(start)
+        st.kind, st.delta, st.start, st.line = "assign", delta, start, lines(start)
         st.name = Token("NAME", m.group("name"), start, m.end("name"))
         st.index = None if m.group("index") is None else [int(m.group("index"))]
         st.value = src              # the first line's statement start, resolved below
@@ -391,7 +394,7 @@ def _shared_parse(doc: Document, text: str, spans, layout=None):
     pieces.append(mtext[pos:])
     try:
         tree = _parser().parse("".join(pieces), "file")
-        stmts = _statements(tree, doc)
+        stmts = _statements(tree, doc, lines)
     except (Rejected, UcsioError):
         return None
     assigns = {st.start: st for st in stmts if st.kind == "assign"}
@@ -607,6 +610,25 @@ def _value(node, delta: int = 0, depth: int = 0) -> _Val:
     return val
 
 
+class _Lines:
+    """The 1-based line of an offset in the grammar's copy of a file (_lines:
+    an LF ends every line, where Document.line_starts finds one, so the two
+    agree), counted on from the offset asked before: offsets asked in
+    ascending order cost one pass over the text."""
+
+    __slots__ = ("text", "pos", "line")
+
+    def __init__(self, text: str):
+        self.text, self.pos, self.line = text, 0, 1
+
+    def __call__(self, offset: int) -> int:
+        if offset < self.pos:
+            self.pos, self.line = 0, 1
+        self.line += self.text.count("\n", self.pos, offset)
+        self.pos = offset
+        return self.line
+
+
 class _Stmt:
     # delta: offset from where ``value`` was parsed to this line (_shared_values)
     __slots__ = ("kind", "line", "start", "mods", "type", "vars", "name", "index", "value",
@@ -616,8 +638,11 @@ class _Stmt:
 _RESERVED = {"DEFDAT", "ENDDAT", "DEF", "END", "DEFFCT", "ENDFCT"}
 
 
-def _statements(tree, doc: Document):
-    """decl and assign statements of the tree, simplified, in order."""
+def _statements(tree, doc: Document, line_of=None):
+    """decl and assign statements of the tree, simplified, in order.
+    ``line_of``: a _Lines of the text parsed, or doc.line_of."""
+    if line_of is None:
+        line_of = doc.line_of
     out = []
     for st in tree.children:        # file: headers, then defdat or the statements
 
@@ -634,7 +659,7 @@ def _statements(tree, doc: Document):
             s = _Stmt()
             s.kind = "decl"
             s.delta = 0
-            s.line = doc.line_of(ch[0].start_pos)
+            s.line = line_of(ch[0].start_pos)
             s.start = ch[0].start_pos
             s.mods = mods
             s.type = ch[i].value.upper()
@@ -660,7 +685,7 @@ def _statements(tree, doc: Document):
             s = _Stmt()
             s.kind = "assign"
             s.delta = 0
-            s.line = doc.line_of(ch[0].start_pos)
+            s.line = line_of(ch[0].start_pos)
             s.start = ch[0].start_pos
             s.name = ch[0]
             s.index = None
@@ -669,7 +694,7 @@ def _statements(tree, doc: Document):
             s.value = ch[-1]
             out.append(s)
         elif d == "defdat":
-            out.extend(_statements(st, doc))
+            out.extend(_statements(st, doc, line_of))
     return out
 
 
@@ -697,11 +722,14 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     layout = _layout_lines(text, nl_text)
     spans = outline(text, nl_text, layout)
     layout_set = set(layout)
-    plain, rest = _plain_statements(doc, text, spans, layout_set)
-    got = _shared_parse(doc, text, rest, layout_set)
+    # line numbers counted in text, not from doc.line_starts (a list of
+    # every line's start, which only a lint or an error needs)
+    line_of = _Lines(text)
+    plain, rest = _plain_statements(doc, text, spans, layout_set, line_of)
+    got = _shared_parse(doc, text, rest, layout_set, line_of)
     if got is None:
         tree = _parse(doc, masked(text, rest), "file")
-        stmts = _statements(tree, doc)
+        stmts = _statements(tree, doc, line_of)
     else:
         stmts, tree = got
     if plain:
