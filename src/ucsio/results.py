@@ -423,15 +423,11 @@ class TaughtPoints(Result):
     orientation_span: float | None
 
 
-class FrameDiff(_Passes):
-    """Δ = measured − simulated for one frame, in the frame's reference:
-    ``dx dy dz`` (mm), ``da db dc`` (deg, each wrapped to (−180, 180]),
-    ``angle`` (deg, the one rotation between the two), ``dist`` (mm),
-    ``dt_mean`` = (|dx| + |dy| + |dz|) / 3 (mm), ``group`` (1–5 by dt_mean),
-    ``pass`` (dt_mean below ``tolerance``)."""
-    name: str
-    simulated: PoseValues
-    measured: PoseValues
+class Delta(_Passes):
+    """Δ = measured − simulated: ``dx dy dz`` (mm), ``da db dc`` (deg, each
+    wrapped to (−180, 180]), ``angle`` (deg, the one rotation between the
+    two), ``dist`` (mm), ``dt_mean`` = (|dx| + |dy| + |dz|) / 3 (mm),
+    ``group`` (1–5 by dt_mean), ``pass``."""
     dx: float
     dy: float
     dz: float
@@ -442,6 +438,15 @@ class FrameDiff(_Passes):
     dist: float
     dt_mean: float
     group: int
+
+
+class FrameDiff(Delta):
+    """Δ = measured − simulated for one frame, in the frame's reference
+    (``Delta``'s keys), the two poses, and ``pass`` (dt_mean below
+    ``tolerance``)."""
+    name: str
+    simulated: PoseValues
+    measured: PoseValues
     tolerance: float | None
 
 
@@ -640,18 +645,8 @@ class ProgramOutput(Result):
 
 # ------------------------------------------------------------------ batch
 
-class BatchDelta(_Passes):
+class BatchDelta(Delta):
     """An entry's Δ measured − simulated (mm, deg), as ``diff``'s."""
-    dx: float
-    dy: float
-    dz: float
-    da: float
-    db: float
-    dc: float
-    angle: float
-    dist: float
-    dt_mean: float
-    group: int
 
 
 class BatchEntry(_Passes):
@@ -780,7 +775,7 @@ class DemoResult(Result):
 __all__ = ["Result", "PoseValues", "ErrorInfo", "NotRead", "FrameItem", "FramesResult", "CheckResult",
            "CheckedFile", "Lint", "Finding", "SolveResult", "Solve", "SolvedFrame", "SolvePoint",
            "Tcp", "Precision", "Uncertainty", "Spread", "Consistency", "WorkingPoint", "Worst",
-           "DiffResult", "Diff", "FrameDiff", "TaughtPoints", "TaughtPoint", "PointsMoved",
+           "DiffResult", "Diff", "Delta", "FrameDiff", "TaughtPoints", "TaughtPoint", "PointsMoved",
            "FilesDiff", "FrameChange", "BackupsDiff", "FileListed", "FileChanged",
            "PatchOutput", "PatchInfo", "Change", "BatchOutput", "BatchEntry", "BatchSummary",
            "BatchGroup", "BatchDelta", "PlanResult", "Suggest", "SuggestAdd", "SuggestDrop",
