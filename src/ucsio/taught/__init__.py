@@ -119,6 +119,20 @@ def _own_tree(sources: list, mine: str, root_of, rel) -> list:
             if not any(parts[:len(t)] == t for t in others)]
 
 
+def cached_reader(read, cache: dict | None, vendor: str):
+    """``read(doc)``, once per file and run where ``cache`` is given (batch
+    reads one backup for many entries)."""
+    if cache is None:
+        return read
+
+    def once(doc):
+        key = (vendor, doc.path)
+        if key not in cache:
+            cache[key] = read(doc)
+        return cache[key]
+    return once
+
+
 FRAME_FILES = ("sysframe.va", "$config.dat")     # what holds the frames of a backup folder
 
 

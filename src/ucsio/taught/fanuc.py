@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import re
 
-from . import Found, TaughtPoint, files_around, is_same_file
+from . import Found, TaughtPoint, cached_reader, files_around, is_same_file
 from ..errors import UcsioError
 from ..geometry.frames import Frame
 from ..parsing import tp
@@ -61,13 +61,7 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
         return found
     uf, group = int(m.group(1)), int(m.group(2) or 1)
 
-    def read(doc: Document):
-        if cache is None:
-            return tp.positions(doc)
-        key = ("fanuc", doc.path)
-        if key not in cache:
-            cache[key] = tp.positions(doc)
-        return cache[key]
+    read = cached_reader(tp.positions, cache, "fanuc")
 
     # the .va too: another robot's sysframe.va below ours marks its tree (left out)
     for src in files_around(frame.file, backup_root, (".ls", ".va")):

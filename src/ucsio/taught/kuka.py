@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from . import Found, TaughtPoint, files_around, is_same_file
+from . import Found, TaughtPoint, cached_reader, files_around, is_same_file
 from ..errors import UcsioError
 from ..geometry.frames import Frame
 from ..parsing import krl
@@ -70,13 +70,7 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
         return found
     base_no = int(m.group(1))
 
-    def read(doc: Document):
-        if cache is None:
-            return krl.positions(doc, full=False)
-        key = ("kuka", doc.path)
-        if key not in cache:
-            cache[key] = krl.positions(doc, full=False)
-        return cache[key]
+    read = cached_reader(lambda doc: krl.positions(doc, full=False), cache, "kuka")
 
     for src in files_around(frame.file, tree_root, (".dat",)):
         try:
