@@ -64,27 +64,21 @@ def print_cell(cell: dict) -> None:
     tool = cell["tool"]
     tl = f" \"{tool['label']}\"" if tool.get("label") else ""
     solved = s.get("tcp") if isinstance(s.get("tcp"), dict) and s["tcp"].get("solved") else None
-    if cell.get("robot") and not solved:
-        print(f"laser        {cell['measurement']}   robot {cell['robot']}   TCP from "
-              f"{tool['name']}{tl}: " + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
-        for w in cell.get("warnings") or ():
-            print(f"warning: {w}")
-        print()
-        print("1. solve (Horn's method, leave-one-out outlier exclusion)")
-    elif solved:
+    tcp = ", ".join(f"{v:.3f}" for v in tool["tcp"])
+    if solved:
         print(f"laser        {cell['measurement']}   robot {cell['robot']}")
-        print(f"TCP of {tool['name']}{tl}: nominal "
-              + ", ".join(f"{v:.3f}" for v in tool["tcp"]) + ", solved with the frame")
-        for w in cell.get("warnings") or ():
-            print(f"warning: {w}")
-        print()
-        print("1. solve (the TCP with the frame: linear start, Gauss-Newton; leave-one-out "
-              "outlier exclusion)")
+        print(f"TCP of {tool['name']}{tl}: nominal {tcp}, solved with the frame")
+    elif cell.get("robot"):
+        print(f"laser        {cell['measurement']}   robot {cell['robot']}   TCP from "
+              f"{tool['name']}{tl}: {tcp}")
     else:
-        print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: "
-              + ", ".join(f"{v:.3f}" for v in tool["tcp"]))
-        print()
-        print("1. solve (Horn's method, leave-one-out outlier exclusion)")
+        print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: {tcp}")
+    for w in cell.get("warnings") or ():
+        print(f"warning: {w}")
+    print()
+    print("1. solve (" + ("the TCP with the frame: linear start, Gauss-Newton; leave-one-out "
+                          "outlier exclusion)" if solved
+                          else "Horn's method, leave-one-out outlier exclusion)"))
     rows = []
     for p in s["points"]:
         loo = p["loo_residual"]
