@@ -102,7 +102,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
             written = save(result, folder / "patched" / Path(cell.controller).name)
             if prog is not None:
                 from ..review.program import save as save_program
-                prog.written = save_program(prog, str(folder / PROGRAM_FILE))
+                save_program(prog, str(folder / PROGRAM_FILE))     # sets prog.written
     label = f"a/{cell.controller}"
     extra = {} if prog is None else {"program": {
         "file": PROGRAM_FILE, "name": prog.name, "frame": prog.frame, "pr": prog.pr,
