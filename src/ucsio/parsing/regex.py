@@ -152,7 +152,7 @@ def save_cache() -> None:
 # (difflib's, a Unicode ``\s``, takes 4 ms, more than reading a 26 KB module);
 # put into re's own cache from ours, they cost what a cached pattern costs.
 # A pattern another Python's modules do not use is simply never looked up
-# (tests/test_regex.py checks that each is what re.compile makes, and that
+# (tests/test_startup_shortcuts.py checks that each is what re.compile makes, and that
 # no command compiles one anew).
 STDLIB: tuple[tuple[str | bytes, int], ...] = (
     # json.scanner, json.decoder (VERBOSE | MULTILINE | DOTALL), json.encoder
