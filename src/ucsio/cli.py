@@ -12,22 +12,39 @@ import sys
 
 from .parsing import regex
 
-regex.prime_stdlib()        # before argparse, json and difflib compile their patterns
+
+def gettext_stand_in():
+    """A ``gettext`` module with argparse's two functions, untranslated;
+    any other name is the real module's (imported then, on first use)."""
+    stand_in = type(sys)("gettext")
+    stand_in.gettext = lambda message: message
+    stand_in.ngettext = lambda singular, plural, n: singular if n == 1 else plural
+
+    def real(name: str):
+        if name.startswith("__"):       # the import system asking (__path__, __spec__, …)
+            raise AttributeError(name)
+        if sys.modules.get("gettext") is stand_in:
+            del sys.modules["gettext"]
+        return getattr(__import__("gettext"), name)
+
+    stand_in.__getattr__ = real     # a module's __getattr__ (PEP 562)
+    return stand_in
+
+
 if "argparse" not in sys.modules and "gettext" not in sys.modules:
     # argparse imports gettext, and its first message looks for translation
     # catalogues (importing locale, a verbose regex, a stat per language):
     # about a tenth of a short command's start-up, for argparse's few English
-    # words, which no Python we support ships a catalogue of. A stand-in with
-    # the two functions argparse takes is removed at once: anything importing
-    # gettext later gets the real one.
-    _stand_in = type(sys)("gettext")
-    _stand_in.gettext = lambda message: message
-    _stand_in.ngettext = lambda singular, plural, n: singular if n == 1 else plural
-    sys.modules["gettext"] = _stand_in
+    # words, which no Python we support ships a catalogue of. The stand-in
+    # defines the two functions argparse takes and hands any other name to the
+    # real module; it is removed at once: anything importing gettext later
+    # gets the real one.
+    _stand_in = sys.modules["gettext"] = gettext_stand_in()
     try:
         import argparse
     finally:
-        del sys.modules["gettext"]
+        if sys.modules.get("gettext") is _stand_in:
+            del sys.modules["gettext"]
 else:
     import argparse
 

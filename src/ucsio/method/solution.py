@@ -81,42 +81,14 @@ def read_json(path: str) -> Any:
         raise UcsioError(f"not UTF-8 text: byte 0x{raw[at]:02x} at offset {at} cannot be decoded "
                          "(a SOLUTION.json is UTF-8)", file=path,
                          line=raw[:at].count(b"\n") + 1) from None
+    import json
     try:
-        data = loads(text)
+        data = json.loads(text)
     except ValueError as exc:           # json.JSONDecodeError
         raise UcsioError(f"not valid JSON: {getattr(exc, 'msg', exc)}", file=path,
                          line=getattr(exc, "lineno", None), col=getattr(exc, "colno", None)) \
             from None
     return data
-
-
-_WHITESPACE = " \t\n\r"      # JSON's
-
-
-class _Strict:
-    """json.JSONDecoder's defaults, as the C scanner reads them."""
-    strict = True
-    object_hook = object_pairs_hook = None
-    parse_float, parse_int = float, int
-    parse_constant = {"-Infinity": -math.inf, "Infinity": math.inf, "NaN": math.nan}.__getitem__
-
-
-def loads(text: str) -> Any:
-    """``json.loads(text)`` through the C scanner that json itself runs: the
-    json package also imports its encoder and compiles its patterns, a few
-    per cent of a cold ``diff``. A document it does not read whole and clean
-    (an error, a Python without ``_json``) goes to json.loads, for the same
-    result or its exact error (tests/test_solution_json.py)."""
-    try:
-        from _json import make_scanner
-        start = len(text) - len(text.lstrip(_WHITESPACE))
-        data, end = make_scanner(_Strict())(text, start)
-        if not text[end:].strip(_WHITESPACE):
-            return data
-    except (ImportError, StopIteration, ValueError, TypeError):
-        pass
-    import json
-    return json.loads(text)
 
 
 def pose_from_json(data: Any, path: str | None = None, allow_rejected: bool = False) -> Pose:

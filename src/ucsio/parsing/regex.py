@@ -55,6 +55,10 @@ def compile(pattern: str, flags: int = 0) -> re.Pattern:
 # Python, another re), patterns are simply compiled by re.
 _store: dict | None = None
 _dirty = False
+_native_ok = True
+"""False once this Python's ``_sre.compile`` has refused opcodes that its own
+``re`` made: from then on every pattern goes to ``re.compile`` at once, so a
+changed ``re`` costs one failed attempt per run, never every pattern twice."""
 
 
 def _store_path() -> str | None:
@@ -87,10 +91,10 @@ def _load_store() -> dict:
 
 
 def _compiled(source, flags: int) -> re.Pattern:
-    global _dirty
+    if not _native_ok:
+        return re.compile(source, flags)
     store = _load_store() if _store is None else _store
-    key = (source, int(flags))
-    got = store.get(key)
+    got = store.get((source, int(flags)))
     if got is not None:
         import _sre
         try:
@@ -102,24 +106,37 @@ def _compiled(source, flags: int) -> re.Pattern:
                                 groupindex, indexgroup)
         except Exception:       # noqa: BLE001 - a stale or damaged entry: compile anew
             pass
+    return _compile_and_keep(store, source, flags)
+
+
+def _compile_and_keep(store: dict, source, flags: int) -> re.Pattern:
+    """Compile as ``re`` does, keeping the opcodes for the next run; where
+    this Python's ``re`` is not built as expected, give up the cache for the
+    rest of the run and let ``re.compile`` do it all."""
+    global _dirty, _native_ok
     try:
+        import _sre
         from re import _compiler, _parser
 
         parsed = _parser.parse(source, flags)
         code = _compiler._code(parsed, flags)
-        groupindex = dict(parsed.state.groupdict)
-        indexgroup = [None] * parsed.state.groups
-        for name, i in groupindex.items():
-            indexgroup[i] = name
-        import _sre
-        compiled = _sre.compile(source, flags | parsed.state.flags, code,
-                                parsed.state.groups - 1, groupindex, tuple(indexgroup))
-        import array
-        args = (int(flags | parsed.state.flags), array.array("I", code).tobytes(),
-                parsed.state.groups - 1, groupindex, tuple(indexgroup))
-    except Exception:           # noqa: BLE001 - not this re's internals: as re does it
+    except Exception:           # noqa: BLE001 - not this re's internals
+        _native_ok = False
         return re.compile(source, flags)
-    store[key] = args
+    groupindex = dict(parsed.state.groupdict)
+    indexgroup = [None] * parsed.state.groups
+    for name, i in groupindex.items():
+        indexgroup[i] = name
+    all_flags = int(flags | parsed.state.flags)
+    try:
+        compiled = _sre.compile(source, all_flags, code, parsed.state.groups - 1, groupindex,
+                                tuple(indexgroup))
+    except Exception:           # noqa: BLE001 - _sre.compile takes other arguments now
+        _native_ok = False
+        return re.compile(source, flags)
+    import array
+    store[(source, int(flags))] = (all_flags, array.array("I", code).tobytes(),
+                                   parsed.state.groups - 1, groupindex, tuple(indexgroup))
     if not _dirty:
         import atexit
         atexit.register(save_cache)     # the command line saves before its os._exit
@@ -144,45 +161,6 @@ def save_cache() -> None:
             write_cache(path, marshal.dumps(_store, 4))
     except (OSError, ValueError):
         pass
-
-
-# The standard library's own patterns that a short command compiles: json's
-# scanner and encoder, and difflib's line-junk test, when they are imported;
-# argparse's, when it reads the command line. re compiles each in pure Python
-# (difflib's, a Unicode ``\s``, takes 4 ms, more than reading a 26 KB module);
-# put into re's own cache from ours, they cost what a cached pattern costs.
-# A pattern another Python's modules do not use is simply never looked up
-# (tests/test_startup_shortcuts.py checks that each is what re.compile makes, and that
-# no command compiles one anew).
-STDLIB: tuple[tuple[str | bytes, int], ...] = (
-    # json.scanner, json.decoder (VERBOSE | MULTILINE | DOTALL), json.encoder
-    (r"(-?(?:0|[1-9]\d*))(\.\d+)?([eE][-+]?\d+)?", 88),
-    (r'(.*?)(["\\\x00-\x1f])', 88),
-    (r"[ \t\n\r]*", 88),
-    (r'[\x00-\x1f\\"\b\f\n\r\t]', 0),
-    (r'([\\"]|[^\ -~])', 0),
-    (b"[\x80-\xff]", 0),
-    (r"\s*(?:#\s*)?$", 0),                       # difflib.IS_LINE_JUNK
-    # argparse: negative numbers, help text, its nargs patterns
-    (r"^-\d+$|^-\d*\.\d+$", 0), (r"\s+", 256), (r"\n\n\n+", 0),
-    ("(-*A-*)", 0), ("(-*A?-*)", 0), ("(-*[A-]*)", 0), ("(-*A[A-]*)", 0), ("(-*A[-AO]*)", 0),
-    ("(A)", 0), ("(A?)", 0), ("([A]*)", 0), ("(A[A]*)", 0),
-)
-
-
-def prime_stdlib() -> None:
-    """Give re's cache the standard library's patterns (``STDLIB``) from the
-    compiled-pattern cache. Where ``re`` keeps no such cache, nothing."""
-    cache = getattr(re, "_cache", None)
-    if not isinstance(cache, dict):
-        return
-    for source, flags in STDLIB:
-        key = (type(source), source, flags)
-        if key not in cache:
-            try:
-                cache[key] = _compiled(source, flags)
-            except Exception:       # noqa: BLE001 - re compiles it when it is used
-                pass
 
 
 class lazy:
