@@ -20,7 +20,7 @@ def _pytest_without_chromium(tmp_path, **env_extra) -> subprocess.CompletedProce
     (bin_dir / "python").symlink_to(sys.executable)
     env = {k: v for k, v in os.environ.items() if k != "UCSIO_REQUIRE_BROWSER"}
     env.update(PATH=str(bin_dir), **env_extra)
-    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+    return subprocess.run([sys.executable, "-m", "pytest", "-q", "-n", "0", "-p", "no:cacheprovider",
                            str(ROOT / "tests" / "test_report_browser.py")],
                           capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300)
 
