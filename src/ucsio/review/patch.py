@@ -1133,8 +1133,8 @@ def save(result: PatchResult, path: str | os.PathLike | None = None,
                              "(run the command again)", file=src)
 
     unchanged()
-    try:
-        st = os.stat(target if os.path.exists(target) else src)
+    try:   # a new copy gets the source's mode; a file replaced keeps its own
+        st = os.stat(src)
         mode, owner = st.st_mode & 0o7777, (st.st_uid, st.st_gid)
     except OSError:
         mode = owner = None

@@ -1,0 +1,107 @@
+"""What ucsio writes, on hostile targets and values (issue 24, points 12-14, 16).
+
+One rule in the shared writer (files.atomic_write) for every file ucsio
+writes: a target that exists and is not a regular file (a named pipe, a
+device) is refused, never replaced by a file; a file that is replaced keeps
+its mode; and the written bytes read back through the same checks as the
+input."""
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+import pytest
+
+from conftest import FIXTURES
+from ucsio.cli import main
+from ucsio.errors import UcsioError
+from ucsio.files import atomic_write, write_target
+
+KUKA_CSV = FIXTURES / "measurements" / "kuka_base3.csv"
+KUKA = FIXTURES / "kuka" / "cell_config.dat"
+CELL = FIXTURES / "patch" / "cell.mod"
+TCP = "--tcp=-20.67,89.73,33.44"
+
+
+@pytest.fixture(scope="module")
+def solution(tmp_path_factory) -> Path:
+    sol = tmp_path_factory.mktemp("sol") / "S.json"
+    assert main(["solve", str(KUKA_CSV), TCP, "-o", str(sol)]) == 0
+    return sol
+
+
+def writers(solution: Path, tmp_path: Path, out: Path) -> dict:
+    """Each command that writes a file, aimed at ``out``."""
+    manifest = tmp_path / "m.toml"
+    manifest.write_text(f'[[entry]]\nname = "r1"\nmeasurement = "{KUKA_CSV}"\n'
+                        f'controller = "{KUKA}"\nframe = "BASE_DATA[3]"\n'
+                        'tcp = [-20.67, 89.73, 33.44]\n')
+    return {
+        "patch": ["patch", str(CELL), "--frame", "wobjTable", "--set", "1,2,3,4,5,6",
+                  "-o", str(out)],
+        "program": ["program", str(solution), "--frame", "UF3", "--pr", "90", "-o", str(out)],
+        "solve": ["solve", str(KUKA_CSV), TCP, "-o", str(out)],
+        "batch --csv": ["batch", str(manifest), "--csv", str(out)],
+        "batch --report": ["batch", str(manifest), "--report", str(out)],
+    }
+
+
+COMMANDS = ["patch", "program", "solve", "batch --csv", "batch --report"]
+
+
+# ------------------------------------------------------------------ point 12
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes on this OS")
+@pytest.mark.parametrize("command", COMMANDS)
+def test_a_pipe_as_the_output_is_refused_and_stays_a_pipe(solution, tmp_path, capsys, command):
+    out = tmp_path / "out"
+    os.mkfifo(out)
+    rc = main(writers(solution, tmp_path, out)[command])
+    err = capsys.readouterr().err
+    assert rc == 2 and "not a regular file (a named pipe (FIFO))" in err, err
+    assert str(out) in err and err.count("\n") == 1
+    assert stat.S_ISFIFO(os.lstat(out).st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.toml", "out"]   # no temporary
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes on this OS")
+def test_a_link_to_a_pipe_is_refused_too(tmp_path):
+    os.mkfifo(tmp_path / "pipe")
+    (tmp_path / "out.json").symlink_to("pipe")
+    with pytest.raises(UcsioError, match="not a regular file"):
+        atomic_write(tmp_path / "out.json", b"{}")
+    assert stat.S_ISFIFO(os.lstat(tmp_path / "pipe").st_mode)
+
+
+def test_a_device_node_is_never_a_target():
+    """Only asked, never written: the suite may run as root, where a broken
+    rule would replace the machine's /dev/null."""
+    if not os.path.exists("/dev/null"):
+        pytest.skip("no /dev/null")
+    with pytest.raises(UcsioError, match=r"not a regular file \(a character device\)"):
+        write_target("/dev/null")
+
+
+# ------------------------------------------------------------------ point 16
+
+@pytest.mark.parametrize("command", ["patch", "program", "solve", "batch --csv"])
+def test_a_replaced_file_keeps_its_mode(solution, tmp_path, command):
+    out = tmp_path / "out"
+    out.write_bytes(b"an older result")
+    os.chmod(out, 0o444)
+    assert main(writers(solution, tmp_path, out)[command]) in (0, 1)
+    assert out.read_bytes() != b"an older result"
+    assert stat.S_IMODE(os.stat(out).st_mode) == 0o444
+
+
+def test_a_new_file_gets_the_usual_mode_and_a_replaced_one_its_own(tmp_path):
+    umask = os.umask(0o022)
+    try:
+        atomic_write(tmp_path / "new.csv", b"a")
+        assert stat.S_IMODE(os.stat(tmp_path / "new.csv").st_mode) == 0o644
+        os.chmod(tmp_path / "new.csv", 0o600)
+        atomic_write(tmp_path / "new.csv", b"b", mode=0o666)    # mode: a new file's only
+        assert stat.S_IMODE(os.stat(tmp_path / "new.csv").st_mode) == 0o600
+    finally:
+        os.umask(umask)
