@@ -105,3 +105,34 @@ def test_a_new_file_gets_the_usual_mode_and_a_replaced_one_its_own(tmp_path):
         assert stat.S_IMODE(os.stat(tmp_path / "new.csv").st_mode) == 0o600
     finally:
         os.umask(umask)
+
+
+# ------------------------------------------------------------------ point 14
+
+def _module_with_a_nul_at(tmp_path: Path, pad_lines: int) -> Path:
+    """cell.mod with ``pad_lines`` comment lines, then a NUL in a comment,
+    before ENDMODULE: past the first 4,096 bytes for 500 lines."""
+    text = CELL.read_bytes()
+    end = text.rindex(b"ENDMODULE")
+    body = text[:end] + b"    ! pad\n" * pad_lines + b"    ! a NUL \x00 in a comment\n" + text[end:]
+    out = tmp_path / "cell.mod"
+    out.write_bytes(body)
+    return out
+
+
+@pytest.mark.parametrize("pad_lines", [0, 500])
+def test_a_nul_anywhere_is_refused_at_its_line(tmp_path, capsys, pad_lines):
+    """The sniff looks at every byte, so a file that reads is one whose
+    patched copy reads too (the edits only move bytes, never add a NUL)."""
+    mod = _module_with_a_nul_at(tmp_path, pad_lines)
+    assert (mod.stat().st_size > 4096) == (pad_lines == 500)
+    line = CELL.read_bytes()[:CELL.read_bytes().rindex(b"ENDMODULE")].count(b"\n") \
+        + pad_lines + 1
+    for args in (["frames", str(mod)], ["check", str(mod)],
+                 ["patch", str(mod), "--frame", "wobjTable", "--set", "1,2,3,4,5,6",
+                  "-o", str(tmp_path / "out.mod")]):
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        assert f"{mod}:{line}:13: binary or encrypted file (byte 0x00 here)" in err, err
+        assert err.count("\n") == 1
+    assert not (tmp_path / "out.mod").exists()
