@@ -51,3 +51,40 @@ def test_a_header_ended_by_a_bare_cr_counts_as_a_line(tmp_path, capsys, eol):
     assert f"{path}:8:23: syntax error" in capsys.readouterr().err
     with pytest.raises(Exception, match=r":8:23:"):
         parse(Document.read(path), full=True)
+
+
+# ------------------------------------------------------------------ point 15
+
+ROWS = [("P1", "0", "0", "0"), ("P2", "100", "0", "0"), ("P3", "0", "100", "0"),
+        ("P4", "{big}", "0", "5"), ("P5", "100", "100", "30"), ("P6", "50", "50", "90")]
+
+
+def _tracker_files(tmp_path, big: str) -> dict:
+    rows = [tuple(v.format(big=big) for v in r) for r in ROWS]
+    files = {
+        "table.txt": "".join(" ".join(r) + "\n" for r in rows),
+        "table.csv": "name;x;y;z\n" + "".join(";".join(r) + "\n" for r in rows),
+        "export.txt": "// SpatialAnalyzer export\n" + "".join(
+            f"UCS,G1,{','.join(r)}\n" for r in rows),
+    }
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    return {name: tmp_path / name for name in files}
+
+
+@pytest.mark.parametrize("big", ["1e100", "-1e155", "1e300", "1000000001"])
+def test_plan_refuses_huge_coordinates_as_solve_does(tmp_path, capsys, big):
+    """One line naming the value's line and column, exit 2, no numpy
+    warning: the readers hold every tracker number to the fit's limit."""
+    import warnings
+    kuka = str(tmp_path.parent / "x")  # never read: the laser file fails first
+    for name, path in _tracker_files(tmp_path, big).items():
+        line = 5 if name != "table.txt" else 4
+        for args in (["plan", str(path)],
+                     ["solve", "--laser", str(path), "--robot", kuka, "--tcp", "0,0,0"]):
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")
+                assert main(args) == 2, (name, args)
+            err = capsys.readouterr().err
+            assert err.count("\n") == 1, err
+            assert f"{path}:{line}:" in err and f"{big} is too large for a fit" in err, err

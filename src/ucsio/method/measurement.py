@@ -39,7 +39,7 @@ from ..errors import UcsioError
 from ..files import read_bytes
 from ..geometry.arrays import flange_matrices
 from ..parsing.document import text_lines
-from ..readers.text import decode
+from ..readers.text import decode, too_large
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),
@@ -96,12 +96,6 @@ class Measurement:
 
 
 # ---------------------------------------------------------------- reading
-
-def too_large(what: str, text: str) -> str:
-    """The error for a number no fit can use (``defaults.MAX_MAGNITUDE``)."""
-    return (f"{what} {text} is too large for a fit: at most {MAX_MAGNITUDE:.0e} in magnitude "
-            "(double precision cannot resolve a micrometre beyond it; a unit or export error?)")
-
 
 def _split(line: str, sep: str) -> list[tuple[str, int]]:
     """Fields of one line with their 1-based start column; double quotes

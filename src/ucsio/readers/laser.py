@@ -106,7 +106,22 @@ def read_laser(path: str | os.PathLike, units: str = "mm") -> LaserPoints:
             break
     if units != "mm":
         points.xyz = points.xyz * UNITS[units]
+        _within_magnitude(points, units)
     return points
+
+
+def _within_magnitude(points: LaserPoints, units: str) -> None:
+    """The magnitude limit the readers hold each number to, once more in mm
+    (a value in metres is a thousand times larger there)."""
+    from ..defaults import MAX_MAGNITUDE
+    from .text import too_large
+
+    beyond = np.flatnonzero(np.abs(points.xyz).max(axis=1, initial=0.0) > MAX_MAGNITUDE)
+    if beyond.size:
+        i = int(beyond[0])
+        raise UcsioError(too_large(f"point {points.names[i]!r}",
+                                   f"({', '.join(f'{v:g}' for v in points.xyz[i])} mm)"),
+                         file=points.path, line=points.lines[i])
 
 
 # ---------------------------------------------------------------- tables

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 import re
 
+from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
 from ..parsing.document import text_lines
 
@@ -69,9 +70,16 @@ def number(text: str, sep: str | None) -> float | None:
     return v if math.isfinite(v) else None
 
 
+def too_large(what: str, text: str) -> str:
+    """The error for a number no fit can use (``defaults.MAX_MAGNITUDE``)."""
+    return (f"{what} {text} is too large for a fit: at most {MAX_MAGNITUDE:.0e} in magnitude "
+            "(double precision cannot resolve a micrometre beyond it; a unit or export error?)")
+
+
 def coordinates(fields, cols, sep, path: str, lineno: int, labels=("x", "y", "z")):
     """The numbers in columns ``cols`` of one row; a bad one is an error
-    naming its line and column."""
+    naming its line and column: not a finite number, or beyond the
+    magnitude any fit (solve, plan) can use."""
     out = []
     for c, label in zip(cols, labels):
         if c >= len(fields):
@@ -82,5 +90,7 @@ def coordinates(fields, cols, sep, path: str, lineno: int, labels=("x", "y", "z"
         if v is None:
             what = "empty" if not text.strip() else f"not a finite number: {text!r}"
             raise UcsioError(f"{label} {what}", file=path, line=lineno, col=col)
+        if abs(v) > MAX_MAGNITUDE:
+            raise UcsioError(too_large(label, text.strip()), file=path, line=lineno, col=col)
         out.append(v)
     return out
