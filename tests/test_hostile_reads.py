@@ -4,6 +4,7 @@ no text that is not what it seems (UTF-16, a NUL inside a name)."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -88,3 +89,60 @@ def test_plan_refuses_huge_coordinates_as_solve_does(tmp_path, capsys, big):
             err = capsys.readouterr().err
             assert err.count("\n") == 1, err
             assert f"{path}:{line}:" in err and f"{big} is too large for a fit" in err, err
+
+
+# ------------------------------------------------------------------ point 17
+
+MEAS = Path(__file__).resolve().parents[1] / "fixtures" / "measurements" / "kuka_base3.csv"
+TCP = "--tcp=-20.67,89.73,33.44"
+
+
+def _solved(capsys, path) -> dict:
+    assert main(["solve", str(path), TCP, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize("codec", ["utf-16", "utf-16-be"])
+def test_a_utf16_measurement_with_its_mark_reads_as_utf8_does(tmp_path, capsys, codec):
+    text = MEAS.read_text()
+    f = tmp_path / "m.csv"
+    f.write_bytes(("\ufeff" + text).encode(codec) if codec.endswith("be") else text.encode(codec))
+    assert f.read_bytes()[:2] in (b"\xff\xfe", b"\xfe\xff")
+    assert _solved(capsys, f)["frame"] == _solved(capsys, MEAS)["frame"]
+
+
+def test_a_utf16_file_without_its_mark_says_so(tmp_path, capsys):
+    f = tmp_path / "m.csv"
+    f.write_bytes(MEAS.read_text().encode("utf-16-le"))
+    for args in (["solve", str(f), TCP], ["plan", str(f)]):
+        assert main(args) == 2
+        err = capsys.readouterr().err
+        assert err == f"ucsio: {f}: UTF-16 text without a byte-order mark: save it as UTF-8\n"
+
+
+def test_a_nul_inside_a_point_name_is_refused_where_it_stands(tmp_path, capsys):
+    """P3 and P\\x003 would be two names: the point would silently lose
+    its pair. Every table reader refuses it at its line and column."""
+    lines = MEAS.read_text().splitlines(keepends=True)
+    row = next(i for i, ln in enumerate(lines) if ln.startswith("P3"))
+    lines[row] = "P\x00" + lines[row][1:]
+    f = tmp_path / "m.csv"
+    f.write_text("".join(lines))
+    table = tmp_path / "t.txt"
+    table.write_text("P1 0 0 0\nP\x002 1 0 0\n")
+    at = tmp_path / "at.csv"
+    at.write_text("name,x,y,z\nW1,0,0,0\nW\x002,1,2,3\n")
+    pairs = tmp_path / "map.csv"
+    pairs.write_text("laser,robot\nP1,XP1\nP\x002,XP2\n")
+    cases = [(["solve", str(f), TCP], f, row + 1),
+             (["plan", str(f)], f, row + 1),
+             (["plan", str(table)], table, 2),
+             (["solve", "--laser", str(table), "--robot", str(f), TCP], table, 2),
+             (["plan", str(MEAS), "--at", str(at)], at, 3),
+             (["solve", "--laser", str(MEAS), "--robot", str(MEAS), "--map", str(pairs), TCP],
+              pairs, 3)]
+    for args, where, line in cases:
+        assert main(args) == 2, args
+        err = capsys.readouterr().err
+        assert err.startswith(f"ucsio: {where}:{line}:2: control character 0x00"), (args, err)
+        assert err.count("\n") == 1

@@ -36,10 +36,9 @@ import numpy as np
 
 from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
-from ..files import read_bytes
 from ..geometry.arrays import flange_matrices
 from ..parsing.document import text_lines
-from ..readers.text import decode, too_large
+from ..readers.text import read_text, too_large
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),
@@ -143,8 +142,7 @@ def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
     side of a measurement (``solve --laser/--robot``); the other side's
     columns are then not needed (and its array is None)."""
     path = os.fspath(path)
-    raw = read_bytes(path, what)
-    return parse_measurement(decode(raw), path, sides)
+    return parse_measurement(read_text(path, what), path, sides)
 
 
 def parse_measurement(text: str, path: str = "<measurement>",

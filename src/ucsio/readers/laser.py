@@ -26,8 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import UcsioError
-from ..files import read_bytes
-from .text import SEPARATORS, content_lines, coordinates, decode, number, split
+from .text import SEPARATORS, content_lines, coordinates, number, read_text, split
 
 UNITS = {"mm": 1.0, "m": 1000.0, "in": 25.4}
 
@@ -99,7 +98,7 @@ def read_laser(path: str | os.PathLike, units: str = "mm") -> LaserPoints:
     path = os.fspath(path)
     if units not in UNITS:
         raise UcsioError(f"--laser-units {units!r}: expected one of {', '.join(UNITS)}")
-    text = decode(read_bytes(path, "laser file"))
+    text = read_text(path, "laser file")
     for _name, recognises, read in FORMATS:
         if recognises(text):
             points = read(text, path)
