@@ -136,3 +136,68 @@ def test_a_nul_anywhere_is_refused_at_its_line(tmp_path, capsys, pad_lines):
         assert f"{mod}:{line}:13: binary or encrypted file (byte 0x00 here)" in err, err
         assert err.count("\n") == 1
     assert not (tmp_path / "out.mod").exists()
+
+
+# ------------------------------------------------------------------ point 13
+
+FANUC_PROGRAM = FIXTURES / "fanuc" / "program_patch.ls"
+
+
+def _check_says(tmp_path, capsys, text: str) -> str:
+    """What ``check`` prints for a program holding ``text``."""
+    f = tmp_path / "CHECKED.LS"
+    f.write_bytes(text.encode())
+    assert main(["check", str(f)]) == 1
+    return capsys.readouterr().out
+
+
+@pytest.mark.parametrize("x, shown", [("2e6", "2e+06"), ("1e308", "1e+308")])
+def test_patch_refuses_a_fanuc_value_check_would_flag(tmp_path, capsys, x, shown):
+    prog = tmp_path / "P.LS"
+    prog.write_bytes(FANUC_PROGRAM.read_bytes())
+    for args in (["-o", str(tmp_path / "out.ls")], ["--in-place"]):
+        rc = main(["patch", str(prog), "--frame", "UF1", "--set", f"{x},0,0,0,0,0", *args])
+        err = capsys.readouterr().err
+        assert rc == 2 and err.count("\n") == 1, err
+        reason = f"UF1: X {shown} mm is 1 km or more from the origin"
+        assert f"{prog}:11:17: {reason} (out-of-range): the controller cannot hold" in err
+    assert prog.read_bytes() == FANUC_PROGRAM.read_bytes()
+    assert not (tmp_path / "out.ls").exists()
+    # check's own words for the same value in the same place
+    text = FANUC_PROGRAM.read_bytes().decode().replace("PR[30,1]=1200.000",
+                                                       f"PR[30,1]={float(x):.3f}")
+    assert f":11:17: warning: out-of-range: {reason}" in _check_says(tmp_path, capsys, text)
+
+
+def test_program_refuses_a_value_check_would_flag(solution, tmp_path, capsys):
+    import json
+    data = json.loads(solution.read_text())
+    data["frame"]["x"] = 2e6
+    data["frame"]["matrix"][0][3] = 2e6
+    far = tmp_path / "far.json"
+    far.write_text(json.dumps(data))
+    out = tmp_path / "SET_UF3.LS"
+    assert main(["program", str(far), "--frame", "UF3", "--pr", "90", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err == ("ucsio: UF3: X 2e+06 mm is 1 km or more from the origin (out-of-range): "
+                   "the controller cannot hold this value; nothing written\n")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("source, frame, reader", [
+    (KUKA, "BASE_DATA[1]", "out of range for a KRL REAL (float32)"),
+    (CELL, "wobjTable", "out of range for a RAPID num (float32)"),
+])
+def test_a_value_the_vendor_reader_refuses_is_not_written(tmp_path, capsys, source, frame,
+                                                          reader):
+    """Every writer's values read back through its own reader: what that
+    reader refuses is refused before writing, in its words, never as an
+    internal error."""
+    f = tmp_path / source.name
+    f.write_bytes(source.read_bytes())
+    rc = main(["patch", str(f), "--frame", frame, "--set", "1e300,0,0,0,0,0", "--in-place"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "internal error" not in err, err
+    assert f"{frame}: number 1000000000000000052504760255" in err and reader in err
+    assert "the controller cannot hold this value; nothing written" in err
+    assert f.read_bytes() == source.read_bytes()
