@@ -70,6 +70,13 @@ FANUC_DECIMALS = 3
 READBACK_FANUC_ANGLE_DEG = 1e-3
 
 
+def same_rotation_tolerance(vendor: str) -> float:
+    """How far (deg) a triple nearer the old angles may stand from the
+    rotation to write (``rotations.nearest_abc``): a quarter of the written
+    step, so that with the rounding it still reads back (READBACK_*)."""
+    return 0.25 * 10.0 ** -(FANUC_DECIMALS if vendor == "fanuc" else ANGLE_DECIMALS)
+
+
 # ----------------------------------------------------------------- numbers
 
 def _decimals_of(text: str | None) -> int:
@@ -255,7 +262,10 @@ def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
         pass
     out = []
     style = _column(nums, ANGLE_DECIMALS)
-    for key, n, v in zip("abc", nums, rot.canonical_abc(pose.abc, pose.q)):
+    # at B = +-90 many triples write this rotation: the one nearest the old
+    # values, so that a small correction looks small in the diff
+    near = rot.nearest_abc(pose.q, tuple(old), same_rotation_tolerance("kuka"))
+    for key, n, v in zip("abc", nums, near):
         if abs(rot.wrap180(v - n.value)) <= half:
             continue
         text = format_number(v, ANGLE_DECIMALS, point=True, old_text=style)
@@ -390,16 +400,22 @@ def _wpr_error(wpr: tuple[float, float, float], q) -> float:
 
 def wpr_to_write(pose: Pose, olds: tuple[float, float, float] | None = None,
                  number=None) -> list[tuple[str | None, float]]:
-    """W, P, R of ``pose`` to 0.001 deg, each as (text, value): of each
-    angle's two neighbours at that step (and its old value ``olds``, text
-    None, where that is within half a step), the three that together are
+    """W, P, R of ``pose`` to 0.001 deg, each as (text, value): of the
+    triples that give its rotation, the one nearest the old values ``olds``
+    (``rotations.nearest_abc``: at P = +-90 there are many); then of each
+    angle's two neighbours at that step (and its old value, text None,
+    where that is within half a step), the three that together are
     nearest in rotation to ``pose``; so rounding errors that add up (W and R
     turn about one axis at P = +-90) cancel instead. ``number`` writes a
     value (``fanuc_number``)."""
     number = number or fanuc_number
     step = 10.0 ** -FANUC_DECIMALS
     half = 0.5 * step
-    a, b, c = rot.canonical_abc(pose.abc, pose.q)
+    if olds is None:
+        a, b, c = rot.canonical_abc(pose.abc, pose.q)
+    else:       # at P = +-90, of the triples that write it, the one nearest the old W, P, R
+        a, b, c = rot.nearest_abc(pose.q, (olds[2], olds[1], olds[0]),
+                                  same_rotation_tolerance("fanuc"))
     options = []
     for i, v in enumerate((c, b, a)):
         opts: list[tuple[str | None, float]] = []
