@@ -146,3 +146,11 @@ def test_a_nul_inside_a_point_name_is_refused_where_it_stands(tmp_path, capsys):
         err = capsys.readouterr().err
         assert err.startswith(f"ucsio: {where}:{line}:2: control character 0x00"), (args, err)
         assert err.count("\n") == 1
+
+
+def test_a_utf16_controller_file_says_so(tmp_path, capsys):
+    f = tmp_path / "$config.dat"
+    f.write_bytes(KRL.format("\r\n", "\r\n", "").encode("utf-16"))
+    assert main(["frames", str(f)]) == 2
+    assert capsys.readouterr().err == (f"ucsio: {f}: UTF-16 text: ucsio reads controller files "
+                                       "as UTF-8 or Windows-1252; save it as UTF-8\n")

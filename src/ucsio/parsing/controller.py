@@ -192,6 +192,9 @@ def _binary_error(doc: Document) -> UcsioError:
     deep in a text file is found wherever it stands)."""
     from .document import first_binary_byte
 
+    if doc.raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return UcsioError("UTF-16 text: ucsio reads controller files as UTF-8 or Windows-1252; "
+                          "save it as UTF-8", file=doc.path)
     at = first_binary_byte(doc.raw)
     before = doc.raw[len(BOM) if doc.bom else 0:at].decode(doc.encoding)
     return doc.error(f"binary or encrypted file (byte 0x{doc.raw[at]:02x} here): refusing to "
