@@ -243,9 +243,10 @@ def looks_binary(raw: bytes) -> bool:
 def first_binary_byte(raw: bytes) -> int:
     """Byte offset (in ``raw``) of the first byte no text file holds; only
     called on bytes ``looks_binary`` flagged."""
+    import re
+
     start = len(BOM) if raw.startswith(BOM) else 0
-    return next(i for i in range(start, len(raw)) if raw[i] not in _TEXT_SET)
+    return re.compile(rb"[^\x20-\xff\t\n\x0c\r]").search(raw, start).start()
 
 
 _TEXT_BYTES = bytes(range(32, 256)) + b"\t\n\x0c\r"
-_TEXT_SET = frozenset(_TEXT_BYTES)
