@@ -482,8 +482,10 @@ def test_quaternion_written_with_q1_not_negative():
     assert float(by["q1"]) > 0
 
 
+# at B = 90 only A - C matters: of the triples with A - C = -30, the one
+# nearest the old A 90, B -25, C 0 (issue 24, the reviewer's diff)
 @pytest.mark.parametrize("given,written", [((10.0, 100.0, 0.0), (-170.0, 80.0, 180.0)),
-                                           ((0.0, 90.0, 30.0), (-30.0, 90.0, 0.0)),
+                                           ((0.0, 90.0, 30.0), (30.0, 90.0, 60.0)),
                                            ((370.0, 0.0, 0.0), (10.0, 0.0, 0.0)),
                                            ((0.0, 0.0, -180.0), (0.0, 0.0, 180.0))])
 def test_kuka_angles_written_in_spec_ranges(given, written):

@@ -5,7 +5,10 @@ Every file ucsio writes (patched controller files, solutions, CSV, reports)
 goes to a temporary file in the same folder, is flushed to disk, and replaces
 the target with one rename; a failure at any step leaves the target (and any
 backup) as it was and no temporary file behind. A symbolic link is written
-through, never replaced; a backup never overwrites an older one.
+through, never replaced; a file that is replaced keeps its permissions and
+owner; a target that exists and is not a regular file (a named pipe, a
+device such as /dev/null) is refused, never replaced; a backup never
+overwrites an older one.
 """
 from __future__ import annotations
 
@@ -18,7 +21,9 @@ def write_target(path: str | os.PathLike) -> str:
     """Where a write to ``path`` lands. A symbolic link is written through to
     the file it names, never replaced by a regular file (an engineer who
     links a controller backup into a work folder means that file); a link
-    that leads nowhere (dangling, or a loop) and a folder are refused."""
+    that leads nowhere (dangling, or a loop), a folder, and anything else that
+    exists and is not a regular file (a named pipe, a device: the rename would
+    replace the node itself, /dev/null included) are refused."""
     given = os.fspath(path)
     path = given
     if os.path.islink(given):
@@ -32,7 +37,34 @@ def write_target(path: str | os.PathLike) -> str:
     if os.path.isdir(path):
         what = "is a directory" if path == given else f"is a link to the directory {path}"
         raise UcsioError(f"{what}: cannot write a file there", file=given)
+    kind = _special_kind(path)
+    if kind is not None:
+        raise UcsioError(f"not a regular file ({kind}): refusing to replace it with a file; "
+                         "give a file name", file=given)
     return path
+
+
+def _special_kind(path: str) -> str | None:
+    """What ``path`` is when it exists and is neither a regular file nor a
+    folder (a named pipe, a device, a socket); None otherwise."""
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return None           # nothing there (yet): a new file
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return None
+    return _kind(mode)
+
+
+def _kind(mode: int) -> str:
+    import stat
+
+    return ("a named pipe (FIFO)" if stat.S_ISFIFO(mode) else
+            "a character device" if stat.S_ISCHR(mode) else
+            "a block device" if stat.S_ISBLK(mode) else
+            "a socket" if stat.S_ISSOCK(mode) else "a special file")
 
 
 def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
@@ -40,6 +72,8 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
                  backup: bool = False) -> tuple[str, str | None]:
     """Write ``data`` to ``path`` through a temporary file in the same folder,
     fsync, then ``os.replace``; a link is written through (``write_target``).
+    A file that is replaced keeps its permissions and owner (a read-only
+    file stays read-only). ``mode`` and ``owner`` apply to a new file only;
     ``mode`` defaults to a new file's usual mode (0666 less the umask, not
     mkstemp's 0600). ``check()`` runs just before the rename and may raise to
     abort. ``backup``: the file being replaced is kept as FILE.bak, or the
@@ -65,10 +99,7 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
-        if mode is None:
-            umask = os.umask(0)
-            os.umask(umask)
-            mode = 0o666 & ~umask
+        mode, owner = _kept_mode_and_owner(path, mode, owner)
         os.chmod(tmp, mode)
         if owner is not None and hasattr(os, "chown"):
             try:
@@ -99,6 +130,24 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
     except OSError:
         pass
     return path, bak
+
+
+def _kept_mode_and_owner(path: str, mode: int | None,
+                         owner: tuple[int, int] | None) -> tuple[int, tuple[int, int] | None]:
+    """The mode and owner the written file gets: those of the file it
+    replaces, so that a rewrite never widens (or narrows) who may read it;
+    for a new file, the ones given, else 0666 less the umask."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        st = None
+    if st is not None:
+        return st.st_mode & 0o7777, (st.st_uid, st.st_gid)
+    if mode is None:
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    return mode, owner
 
 
 def backup_names(path: str):
@@ -194,10 +243,7 @@ def _regular_file(st: os.stat_result, name: str, what: str) -> None:
         return
     if stat.S_ISDIR(mode):
         raise UcsioError(f"is a directory, not a {what}", file=name)
-    kind = ("a named pipe (FIFO)" if stat.S_ISFIFO(mode) else
-            "a character device" if stat.S_ISCHR(mode) else
-            "a block device" if stat.S_ISBLK(mode) else
-            "a socket" if stat.S_ISSOCK(mode) else "a special file")
+    kind = _kind(mode)
     raise UcsioError(f"not a regular file ({kind}), so not read as the {what}: give a file "
                      "(or - for standard input)", file=name)
 

@@ -53,11 +53,15 @@ class _Bar:
 
 
 def _check_output(path: str | None, option: str) -> None:
+    """Refuse an output the batch could not write before it runs."""
+    from ..files import write_target
+
     if path is None:
         return
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise UcsioError(f"{option} {path}: folder {folder} does not exist")
+    write_target(path)
 
 
 def batch(manifest, *, uncertainty: int = 0, sigma_laser: float = defaults.SIGMA_LASER,

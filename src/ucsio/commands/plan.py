@@ -83,12 +83,11 @@ def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
     """(method.plan.Planned, warnings) from PLAN.csv and --robot."""
     import numpy as np
 
-    from ..files import read_bytes
     from ..method.plan import Planned
-    from ..readers.text import content_lines, decode
+    from ..readers.text import content_lines, read_text
 
     plan = os.fspath(plan)
-    text = decode(read_bytes(plan, "plan file"))
+    text = read_text(plan, "plan file")
     has_robot = any("robot_x" in line.lower() for _, line in content_lines(text)[:2])
     warnings: list[str] = []
     if has_robot and robot is not None:

@@ -120,6 +120,59 @@ def canonical_abc(abc: tuple[float, float, float], q: Quat) -> tuple[float, floa
     return quat_to_abc(q)
 
 
+def abc_in_range(abc: tuple[float, float, float], q: Quat) -> tuple[float, float, float]:
+    """A, B, C as given when they are in SPEC's written ranges (B in [-90,
+    90], A and C in (-180, 180]), at B = +-90 too; else the canonical angles
+    of the same rotation ``q``: what a file holds, as a reviewer reads it."""
+    a, b, c = abc
+    if -90.0 <= b <= 90.0 and -180.0 < a <= 180.0 and -180.0 < c <= 180.0:
+        return abc
+    return quat_to_abc(q)
+
+
+def nearest_abc(q: Quat, near: tuple[float, float, float],
+                tolerance: float) -> tuple[float, float, float]:
+    """Of the A, B, C triples in SPEC's ranges that give rotation ``q``
+    within ``tolerance`` degrees, the one nearest ``near`` (the values a file
+    holds now), so that a small correction looks small to a reviewer.
+
+    Away from B = +-90 the triple is unique and this is ``quat_to_abc``. At
+    B = +90 only A - C matters (R = Rz(A - C) Ry(90)), at B = -90 only A + C:
+    moving along (t, 0, +-t) keeps the rotation, and near the lock changes it
+    by a little, growing with t; so the shift towards ``near`` is the whole
+    one at the lock and shrinks (bisected) until the rotation is within
+    ``tolerance`` next to it."""
+    a1, b1, c1 = quat_to_abc(q)
+    sign = 1.0 if b1 > 0.0 else -1.0
+    da, dc = wrap180(near[0] - a1), wrap180(near[2] - c1)
+
+    def farness(t: float) -> float:
+        return wrap180(t - da) ** 2 + wrap180(sign * t - dc) ** 2
+
+    # nearest to (da, dc) on the line (t, sign t): their mean, or 180 from it
+    # where the wraps put it on the other side
+    mean = (da + sign * dc) / 2.0
+    t = min((mean, wrap180(mean + 180.0)), key=farness)
+    if t == 0.0:
+        return a1, b1, c1
+
+    def shifted(f: float) -> tuple[float, float, float]:
+        return wrap180(a1 + f * t), b1, wrap180(c1 + sign * f * t)
+
+    if quat_angle(abc_to_quat(*shifted(1.0)), q) <= tolerance:
+        return shifted(1.0)
+    lo, hi = 0.0, 1.0       # shifted(lo) is within tolerance (lo = 0: q's own triple)
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        if quat_angle(abc_to_quat(*shifted(mid)), q) <= tolerance:
+            lo = mid
+        else:
+            hi = mid
+    # away from the lock the room is a few tolerances wide: not worth a
+    # triple that differs from q's own in the last digits
+    return shifted(lo) if lo * abs(t) > 10.0 * tolerance else (a1, b1, c1)
+
+
 def abc_to_quat(a: float, b: float, c: float) -> Quat:
     ha, hb, hc = (math.radians(v) / 2 for v in (a, b, c))
     ca, sa = math.cos(ha), math.sin(ha)

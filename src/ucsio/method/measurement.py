@@ -36,10 +36,9 @@ import numpy as np
 
 from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
-from ..files import read_bytes
 from ..geometry.arrays import flange_matrices
 from ..parsing.document import text_lines
-from ..readers.text import decode
+from ..readers.text import read_text, too_large
 
 FORMS = {
     "kuka": ("robot_a", "robot_b", "robot_c"),
@@ -97,12 +96,6 @@ class Measurement:
 
 # ---------------------------------------------------------------- reading
 
-def too_large(what: str, text: str) -> str:
-    """The error for a number no fit can use (``defaults.MAX_MAGNITUDE``)."""
-    return (f"{what} {text} is too large for a fit: at most {MAX_MAGNITUDE:.0e} in magnitude "
-            "(double precision cannot resolve a micrometre beyond it; a unit or export error?)")
-
-
 def _split(line: str, sep: str) -> list[tuple[str, int]]:
     """Fields of one line with their 1-based start column; double quotes
     may enclose a field (``""`` inside is a quote)."""
@@ -149,8 +142,7 @@ def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
     side of a measurement (``solve --laser/--robot``); the other side's
     columns are then not needed (and its array is None)."""
     path = os.fspath(path)
-    raw = read_bytes(path, what)
-    return parse_measurement(decode(raw), path, sides)
+    return parse_measurement(read_text(path, what), path, sides)
 
 
 def parse_measurement(text: str, path: str = "<measurement>",

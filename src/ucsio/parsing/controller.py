@@ -11,7 +11,7 @@ import os
 from ..errors import UcsioError
 from ..geometry.frames import Frame
 from ..values import Value
-from .document import Document, looks_binary
+from .document import BOM, Document, looks_binary
 from .lalr import paused_gc
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
@@ -171,7 +171,7 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
         if os.path.splitext(doc.path)[1].lower() in BINARY_SUFFIXES:
             raise UcsioError("binary FANUC file: ucsio reads its ASCII twin (.ls for a .tp "
                              "program, .va for .sv/.vr data)", file=doc.path)
-        raise UcsioError("binary or encrypted file: refusing to read or patch it", file=doc.path)
+        raise _binary_error(doc)
     vendor = detect_vendor(doc)
     # The trees and frames of a file hold no reference cycles; the cyclic
     # collector's passes over their growing heap made a long file's
@@ -185,6 +185,20 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
             return fanuc.parse(doc, full=full, beside=beside)
         from . import krl
         return krl.parse(doc, full=full)
+
+
+def _binary_error(doc: Document) -> UcsioError:
+    """'binary or encrypted file', at the first byte that made it so (a NUL
+    deep in a text file is found wherever it stands)."""
+    from .document import first_binary_byte
+
+    if doc.raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return UcsioError("UTF-16 text: ucsio reads controller files as UTF-8 or Windows-1252; "
+                          "save it as UTF-8", file=doc.path)
+    at = first_binary_byte(doc.raw)
+    before = doc.raw[len(BOM) if doc.bom else 0:at].decode(doc.encoding)
+    return doc.error(f"binary or encrypted file (byte 0x{doc.raw[at]:02x} here): refusing to "
+                     "read or patch it", len(before))
 
 
 def load(path: str | os.PathLike, full: bool = False) -> ControllerFile:

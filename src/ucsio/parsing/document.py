@@ -229,14 +229,24 @@ def _blanked(text: str, start: int, end: int) -> str:
     return "\n".join([" " * len(part) for part in text[start:end].split("\n")])
 
 
-def looks_binary(raw: bytes, limit: int = 4096) -> bool:
-    """Encrypted RAPID modules and other binaries: NUL or control bytes early on."""
-    head = raw[:limit]
-    if head.startswith(BOM):
-        head = head[len(BOM):]
+def looks_binary(raw: bytes) -> bool:
+    """Encrypted RAPID modules and other binaries: a NUL or control byte
+    anywhere. The whole file, not its head: a patched copy whose edits move
+    such a byte forward must be judged as its input was (one rule for input
+    and read-back)."""
+    body = raw[len(BOM):] if raw.startswith(BOM) else raw
     # what is left after deleting every byte a text file may hold: a C loop,
-    # not a Python one (patch reads every sibling module's head)
-    return bool(head.translate(None, _TEXT_BYTES))
+    # not a Python one (patch reads every sibling module's bytes)
+    return bool(body.translate(None, _TEXT_BYTES))
+
+
+def first_binary_byte(raw: bytes) -> int:
+    """Byte offset (in ``raw``) of the first byte no text file holds; only
+    called on bytes ``looks_binary`` flagged."""
+    import re
+
+    start = len(BOM) if raw.startswith(BOM) else 0
+    return re.compile(rb"[^\x20-\xff\t\n\x0c\r]").search(raw, start).start()
 
 
 _TEXT_BYTES = bytes(range(32, 256)) + b"\t\n\x0c\r"

@@ -26,8 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import UcsioError
-from ..files import read_bytes
-from .text import SEPARATORS, content_lines, coordinates, decode, number, split
+from .text import SEPARATORS, content_lines, coordinates, number, read_text, split
 
 UNITS = {"mm": 1.0, "m": 1000.0, "in": 25.4}
 
@@ -99,14 +98,29 @@ def read_laser(path: str | os.PathLike, units: str = "mm") -> LaserPoints:
     path = os.fspath(path)
     if units not in UNITS:
         raise UcsioError(f"--laser-units {units!r}: expected one of {', '.join(UNITS)}")
-    text = decode(read_bytes(path, "laser file"))
+    text = read_text(path, "laser file")
     for _name, recognises, read in FORMATS:
         if recognises(text):
             points = read(text, path)
             break
     if units != "mm":
         points.xyz = points.xyz * UNITS[units]
+        _within_magnitude(points, units)
     return points
+
+
+def _within_magnitude(points: LaserPoints, units: str) -> None:
+    """The magnitude limit the readers hold each number to, once more in mm
+    (a value in metres is a thousand times larger there)."""
+    from ..defaults import MAX_MAGNITUDE
+    from .text import too_large
+
+    beyond = np.flatnonzero(np.abs(points.xyz).max(axis=1, initial=0.0) > MAX_MAGNITUDE)
+    if beyond.size:
+        i = int(beyond[0])
+        raise UcsioError(too_large(f"point {points.names[i]!r}",
+                                   f"({', '.join(f'{v:g}' for v in points.xyz[i])} mm)"),
+                         file=points.path, line=points.lines[i])
 
 
 # ---------------------------------------------------------------- tables

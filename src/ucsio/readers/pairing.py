@@ -17,10 +17,9 @@ import os
 import numpy as np
 
 from ..errors import UcsioError
-from ..files import read_bytes
 from .laser import LaserPoints
 from .robot import RobotPoses, _names
-from .text import content_lines, decode, split
+from .text import content_lines, read_text, split
 
 MIN_PAIRS = 3
 
@@ -28,7 +27,7 @@ MIN_PAIRS = 3
 def read_map(path: str | os.PathLike) -> list[tuple[str, str, int]]:
     """(laser name, robot name, line) from a --map CSV."""
     path = os.fspath(path)
-    rows = content_lines(decode(read_bytes(path, "map file")))
+    rows = content_lines(read_text(path, "map file"))
     out = []
     for k, (lineno, line) in enumerate(rows):
         sep = ";" if ";" in line else ("\t" if "\t" in line else ",")

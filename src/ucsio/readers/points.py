@@ -24,10 +24,9 @@ import numpy as np
 
 from ..defaults import MAX_MAGNITUDE
 from ..errors import UcsioError
-from ..files import read_bytes
 from ..parsing.document import text_lines
 from .laser import _header_key
-from .text import decode, split
+from .text import read_text, split
 
 AXES = ("x", "y", "z")
 
@@ -46,7 +45,7 @@ class Points:
 
 def read_points(path: str | os.PathLike, what: str = "working-point file") -> Points:
     path = os.fspath(path)
-    return parse_points(decode(read_bytes(path, what)), path)
+    return parse_points(read_text(path, what), path)
 
 
 def parse_points(text: str, path: str = "<points>") -> Points:

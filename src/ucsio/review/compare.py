@@ -24,7 +24,7 @@ from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
 from .unset import is_set, warning as unset_warning
 from .patch import (_close32, common_ends, measured_in_parent, object_frame_basis, poses_equal,
-                    reference_problem, resolve_name, unified_lines)
+                    reference_problem, resolve_name, same_rotation_tolerance, unified_lines)
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -49,7 +49,8 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
                          "reference": frame.reference}
     if frame.label:
         d["label"] = frame.label
-    d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance))
+    d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance,
+                         same_rotation_tolerance(frame.vendor)))
     _fanuc_deltas(d)
     warnings = []
     why = reference_problem(cf, frame)
@@ -148,7 +149,8 @@ def diff_files(old: ControllerFile | None, new: ControllerFile | None) -> dict[s
             if n.label:
                 item["label"] = n.label
             if o.pose is not None and n.pose is not None:
-                delta = frame_delta(o.pose, n.pose)
+                delta = frame_delta(o.pose, n.pose,
+                                    same_rotation=same_rotation_tolerance(n.vendor))
                 # simulated/measured are SPEC's names for the two sides;
                 # here they are the old file and the new one.
                 for k in ("dx", "dy", "dz", "da", "db", "dc", "angle", "dist", "dt_mean",

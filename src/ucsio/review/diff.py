@@ -12,10 +12,12 @@ import math
 
 from .. import defaults
 from ..geometry.frames import Pose
-from ..geometry.rotations import canonical_abc, quat_angle, wrap180
+from ..geometry.rotations import abc_in_range, nearest_abc, quat_angle, wrap180
 
 DEFAULT_TOLERANCE = defaults.TOLERANCE
 GROUP_BOUNDS = (10.0, 25.0, 50.0, 100.0)   # mm; group k is below GROUP_BOUNDS[k-1]
+# deg: a quarter of KUKA's written step (review.patch.same_rotation_tolerance)
+SAME_ROTATION = 2.5e-5
 
 
 def group_of(dt_mean: float) -> int:
@@ -25,12 +27,18 @@ def group_of(dt_mean: float) -> int:
     return len(GROUP_BOUNDS) + 1
 
 
-def frame_delta(simulated: Pose, measured: Pose, tolerance: float = DEFAULT_TOLERANCE) -> dict:
+def frame_delta(simulated: Pose, measured: Pose, tolerance: float = DEFAULT_TOLERANCE,
+                same_rotation: float = SAME_ROTATION) -> dict:
+    """SPEC's delta. da, db, dc are between the simulated angles in SPEC's
+    ranges (a file that writes A 200, B 100, C -181 must not show +180 deg
+    on two axes) and the measured rotation's triple nearest them, as patch
+    writes it (``rotations.nearest_abc``, within ``same_rotation`` deg: at
+    B = +-90, a 0.01 deg correction is a 0.01 deg delta, not a 175 deg
+    rewrite of A and C)."""
     dx, dy, dz = measured.x - simulated.x, measured.y - simulated.y, measured.z - simulated.z
-    # per-axis deltas between SPEC's canonical angles: a file that writes the
-    # same rotation as A 200, B 100, C -181 must not show +180 deg on two axes
-    da, db, dc = (wrap180(m - s) for m, s in zip(canonical_abc(measured.abc, measured.q),
-                                                  canonical_abc(simulated.abc, simulated.q)))
+    old = abc_in_range(simulated.abc, simulated.q)
+    new = nearest_abc(measured.q, old, same_rotation)
+    da, db, dc = (wrap180(m - s) for m, s in zip(new, old))
     dt_mean = (abs(dx) + abs(dy) + abs(dz)) / 3.0
     return {
         "simulated": simulated.as_dict(),

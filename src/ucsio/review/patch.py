@@ -70,6 +70,13 @@ FANUC_DECIMALS = 3
 READBACK_FANUC_ANGLE_DEG = 1e-3
 
 
+def same_rotation_tolerance(vendor: str) -> float:
+    """How far (deg) a triple nearer the old angles may stand from the
+    rotation to write (``rotations.nearest_abc``): a quarter of the written
+    step, so that with the rounding it still reads back (READBACK_*)."""
+    return 0.25 * 10.0 ** -(FANUC_DECIMALS if vendor == "fanuc" else ANGLE_DECIMALS)
+
+
 # ----------------------------------------------------------------- numbers
 
 def _decimals_of(text: str | None) -> int:
@@ -255,7 +262,10 @@ def _angle_changes(frame: Frame, pose: Pose) -> list[Change]:
         pass
     out = []
     style = _column(nums, ANGLE_DECIMALS)
-    for key, n, v in zip("abc", nums, rot.canonical_abc(pose.abc, pose.q)):
+    # at B = +-90 many triples write this rotation: the one nearest the old
+    # values, so that a small correction looks small in the diff
+    near = rot.nearest_abc(pose.q, tuple(old), same_rotation_tolerance("kuka"))
+    for key, n, v in zip("abc", nums, near):
         if abs(rot.wrap180(v - n.value)) <= half:
             continue
         text = format_number(v, ANGLE_DECIMALS, point=True, old_text=style)
@@ -390,16 +400,22 @@ def _wpr_error(wpr: tuple[float, float, float], q) -> float:
 
 def wpr_to_write(pose: Pose, olds: tuple[float, float, float] | None = None,
                  number=None) -> list[tuple[str | None, float]]:
-    """W, P, R of ``pose`` to 0.001 deg, each as (text, value): of each
-    angle's two neighbours at that step (and its old value ``olds``, text
-    None, where that is within half a step), the three that together are
+    """W, P, R of ``pose`` to 0.001 deg, each as (text, value): of the
+    triples that give its rotation, the one nearest the old values ``olds``
+    (``rotations.nearest_abc``: at P = +-90 there are many); then of each
+    angle's two neighbours at that step (and its old value, text None,
+    where that is within half a step), the three that together are
     nearest in rotation to ``pose``; so rounding errors that add up (W and R
     turn about one axis at P = +-90) cancel instead. ``number`` writes a
     value (``fanuc_number``)."""
     number = number or fanuc_number
     step = 10.0 ** -FANUC_DECIMALS
     half = 0.5 * step
-    a, b, c = rot.canonical_abc(pose.abc, pose.q)
+    if olds is None:
+        a, b, c = rot.canonical_abc(pose.abc, pose.q)
+    else:       # at P = +-90, of the triples that write it, the one nearest the old W, P, R
+        a, b, c = rot.nearest_abc(pose.q, (olds[2], olds[1], olds[0]),
+                                  same_rotation_tolerance("fanuc"))
     options = []
     for i, v in enumerate((c, b, a)):
         opts: list[tuple[str | None, float]] = []
@@ -712,15 +728,18 @@ class PatchResult(Value):
     until ``save``."""
 
     __slots__ = ("path", "frame", "pose", "document", "new_bytes", "changes", "warnings",
-                 "written", "backup")
+                 "written", "backup", "flagged_before")
 
     def __init__(self, path: str, frame: Frame, pose: Pose, document: Document,
                  new_bytes: bytes, changes: list[Change], warnings: list[str] | None = None,
-                 written: str | None = None, backup: str | None = None):
+                 written: str | None = None, backup: str | None = None,
+                 flagged_before: frozenset = frozenset()):
         self.path, self.frame, self.pose, self.document = path, frame, pose, document
         self.new_bytes, self.changes = new_bytes, changes
         self.warnings = [] if warnings is None else warnings
         self.written, self.backup = written, backup
+        # (code, message) of the source's own warnings: what the patch did not cause
+        self.flagged_before = flagged_before
 
     def with_changes(self, **fields) -> "PatchResult":
         """A copy with these fields replaced (LibCST's name for it)."""
@@ -952,7 +971,8 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     doc = cf.document
     new_bytes = doc.edited_bytes(edits_for(frame, changes))
     result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
-                         new_bytes=new_bytes, changes=changes, warnings=warnings)
+                         new_bytes=new_bytes, changes=changes, warnings=warnings,
+                         flagged_before=frozenset((lint.code, lint.message) for lint in cf.lints))
     if verify:
         globals()["verify"](result)     # the function (the keyword shadows its name)
     return result
@@ -996,8 +1016,8 @@ def reads_back(frame: Frame | None, pose: Pose) -> bool:
             and rot.quat_angle(p.q, pose.q) <= angle)
 
 
-def _reread_declaration(result: PatchResult) -> Frame | None:
-    """The patched frame read back from its own declaration, through the same
+def _reread_declaration(result: PatchResult) -> tuple[Frame, ControllerFile] | None:
+    """The patched frame (and what parsed it) read back from its own declaration, through the same
     grammar, instead of from the whole file again (the re-parse was a third
     of a cold ``patch``). First checks that the new text is the old text with
     only the edited spans replaced, so the declaration's context is the one
@@ -1038,7 +1058,7 @@ def _reread_declaration(result: PatchResult) -> Frame | None:
         again = cf.frame(frame.name) if cf.vendor == frame.vendor else None
     except (UcsioError, UnicodeError):
         return None
-    return again if reads_back(again, result.pose) else None
+    return (again, cf) if reads_back(again, result.pose) else None
 
 
 def _read_again(cf: ControllerFile, frame: Frame) -> Frame:
@@ -1069,12 +1089,19 @@ def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None
         if parsed is not None:
             again = _read_again(parsed, frame)
         else:
-            again = _reread_declaration(result)
-            if again is None:   # the declaration alone did not read back: the whole file
-                again = _read_again(parse(Document(result.new_bytes, doc.path)), frame)
+            reread = _reread_declaration(result)
+            if reread is None:  # the declaration alone did not read back: the whole file
+                parsed = parse(Document(result.new_bytes, doc.path))
+                again = _read_again(parsed, frame)
+            else:
+                again, parsed = reread
     except UcsioError as exc:
+        if _in_new_numbers(exc, result):    # the reader refuses a value written
+            raise cannot_hold(f"{frame.name}: {exc.message}", exc) from None
         raise UcsioError(f"internal error: the patched text does not parse back: {exc}",
                          file=doc.path) from None
+    refuse_flagged_values(parsed, again, [c.component for c in result.changes],
+                          known=result.flagged_before)
     p = again.pose
     if p is None:
         raise UcsioError("internal error: the patched frame has no value", file=doc.path)
@@ -1088,6 +1115,55 @@ def verify(result: PatchResult, *, parsed: ControllerFile | None = None) -> None
                 abs(sum(c * c for c in q) - 1.0) > QUAT_NORM_MAX:
             raise UcsioError("internal error: written quaternion is not normalised",
                              file=doc.path)
+
+
+def cannot_hold(reason: str, at: UcsioError | None = None) -> UcsioError:
+    """The refusal of a value the controller cannot hold: the reader's or
+    check's own words, at the position ``at`` names in the written text
+    (none for a new program, which has no file yet)."""
+    where = {"file": at.file, "line": at.line, "col": at.col} if at is not None else {}
+    return UcsioError(f"{reason}: the controller cannot hold this value; nothing written",
+                      **where)
+
+
+def refuse_flagged_values(parsed: ControllerFile, frame: Frame, components,
+                          positioned: bool = True, known: frozenset = frozenset()) -> None:
+    """A value written must pass ``check`` as the input did: the first
+    warning lint the read-back raises at one of ``frame``'s written numbers
+    (``components``) refuses the write with that lint's message (FANUC's
+    out-of-range, and whatever a vendor's reader flags in a value). A lint
+    the input had already (``known``: (code, message)) is not the patch's.
+    ``positioned``: name the number's line and column (a file patched),
+    else nothing (a new program has no file yet)."""
+    doc = parsed.document
+    spans = [frame.numbers[k].span for k in components if k in frame.numbers]
+    for lint in parsed.lints:
+        if lint.severity != "warning" or lint.line > len(doc.line_starts) \
+                or (lint.code, lint.message) in known:
+            continue
+        at = doc.line_starts[lint.line - 1] + lint.col - 1
+        if any(sp.start <= at < sp.end for sp in spans):
+            raise cannot_hold(f"{lint.message} ({lint.code})",
+                              UcsioError("", file=doc.path, line=lint.line, col=lint.col)
+                              if positioned else None)
+
+
+def _in_new_numbers(exc: UcsioError, result: PatchResult) -> bool:
+    """Whether a read-back error stands in one of the numbers the patch
+    wrote (the reader refuses the value itself: a REAL out of range)."""
+    if exc.line is None or exc.col is None:
+        return False
+    new = Document(result.new_bytes, result.document.path)
+    if exc.line > len(new.line_starts):
+        return False
+    at = new.line_starts[exc.line - 1] + exc.col - 1
+    shift = 0
+    for e in sorted(edits_for(result.frame, result.changes), key=lambda e: e.span.start):
+        start = e.span.start + shift
+        if start <= at < start + len(e.text):
+            return True
+        shift += len(e.text) - (e.span.end - e.span.start)
+    return False
 
 
 # ----------------------------------------------------------------- writing
@@ -1133,8 +1209,8 @@ def save(result: PatchResult, path: str | os.PathLike | None = None,
                              "(run the command again)", file=src)
 
     unchanged()
-    try:
-        st = os.stat(target if os.path.exists(target) else src)
+    try:   # a new copy gets the source's mode; a file replaced keeps its own
+        st = os.stat(src)
         mode, owner = st.st_mode & 0o7777, (st.st_uid, st.st_gid)
     except OSError:
         mode = owner = None

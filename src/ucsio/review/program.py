@@ -30,7 +30,8 @@ from ..errors import UcsioError
 from ..geometry.frames import Pose
 from ..parsing.document import Document
 from ..values import Value
-from .patch import fanuc_number, reads_back, tp_literal, wpr_to_write
+from .patch import (cannot_hold, fanuc_number, reads_back, refuse_flagged_values, tp_literal,
+                    wpr_to_write)
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -242,8 +243,13 @@ def _read_back(text: str, name: str, short: str, pose: Pose) -> dict[str, float]
     """The frame as ucsio's TP grammar reads the program: it must give
     ``pose`` within 0.001 mm and 0.001 deg (else an internal error)."""
     from ..parsing import tp
-    cf = tp.parse(Document(text.encode("ascii"), f"{name}.LS"), full=True)
+    try:
+        cf = tp.parse(Document(text.encode("ascii"), f"{name}.LS"), full=True)
+    except UcsioError as exc:      # the reader refuses a value (a REAL out of range)
+        raise cannot_hold(f"{short}: {exc.message}") from None
     found = [f for f in cf.frames if f.name == short]
+    if len(found) == 1:
+        refuse_flagged_values(cf, found[0], "xyzwpr", positioned=False)
     if len(found) != 1 or not reads_back(found[0], pose):
         got = found[0].pose.as_dict() if found and found[0].pose else None
         raise UcsioError(f"internal error: the program reads back as {got}, not "
