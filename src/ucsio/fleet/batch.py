@@ -51,7 +51,9 @@ _BACKUP_FOLDER = re.compile(r"(?:KRC|R\d|SYSTEM|PROGRAM|RAPID|TASK\d+|PROGMOD|SY
 #: the two sides of a measurement where they live, instead of ``measurement``
 #: (``solve --laser/--robot``; paths resolved like the others)
 SOURCE_KEYS = ("laser", "robot", "config", "map")
-SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj")
+SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj", "angle_units", "quaternion_order")
+#: how a measurement's numbers are written (solve's options of those names), for either kind
+READING_KEYS = ("laser_units", "angle_units", "quaternion_order")
 ENTRY_KEYS = ("name", "measurement", *SOURCE_KEYS, *SOURCE_OPTIONS, "controller", "frame", "tcp",
               "tool", "threshold", "min_points", "tolerance", "exclude", "no_exclusion", "reach",
               "points", "station", "at", "gate")
@@ -87,6 +89,7 @@ class Entry:
     sources: dict | None = None       # laser, robot, config, map, laser_units, robot_tool, robot_wobj
     at: str | None = None             # working points (CSV of point, x, y, z in the UCS), resolved
     gate: str = "reach"               # "at": the determinacy gate judges the worst working point
+    reading: tuple = ()               # (key, value) of READING_KEYS the manifest gives
 
 
 @dataclass
@@ -136,6 +139,10 @@ def _check_values(table: dict, where: str, path: str) -> None:
     if "laser_units" in table and table["laser_units"] not in ("mm", "m", "in"):
         raise UcsioError(f"{where}: laser_units must be \"mm\", \"m\" or \"in\", got "
                          f"{table['laser_units']!r}", file=path)
+    for key, allowed in (("angle_units", ("deg", "rad")), ("quaternion_order", ("wxyz", "xyzw"))):
+        if key in table and table[key] not in allowed:
+            raise UcsioError(f"{where}: {key} must be \"{allowed[0]}\" or \"{allowed[1]}\", "
+                             f"got {table[key]!r}", file=path)
     if "tcp" in table and table["tcp"] != "solve":
         v = table["tcp"]
         if not isinstance(v, list) or len(v) != 3:
@@ -236,7 +243,8 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  reach=float(merged.get("reach", REACH)),
                  points=merged.get("points", False), station=merged.get("station"),
                  solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources,
-                 at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate)
+                 at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate,
+                 reading=tuple((k, merged[k]) for k in READING_KEYS if k in merged))
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -513,9 +521,10 @@ class _Cache:
         from ..parsing.controller import load
         return self._get(self.controllers, path, load)
 
-    def measurement(self, path: str):
+    def measurement(self, path: str, reading: tuple = ()):
         from ..method.measurement import read_measurement
-        return self._get(self.measurements, path, read_measurement)
+        return self._get(self.measurements, (path, reading),
+                         lambda _key: read_measurement(path, **dict(reading)))
 
     def points(self, path: str):
         """A working-point file (readers.points), read once per run."""
@@ -531,7 +540,9 @@ class _Cache:
             lp = laser.read_laser(sources["laser"], sources.get("laser_units", "mm"))
             rp = robot.read_robot(sources["robot"], config=sources.get("config"),
                                   tool=sources.get("robot_tool", "tool0"),
-                                  wobj=sources.get("robot_wobj", "wobj0"))
+                                  wobj=sources.get("robot_wobj", "wobj0"),
+                                  angle_units=sources.get("angle_units", "deg"),
+                                  quaternion_order=sources.get("quaternion_order", "wxyz"))
             mapping = pairing.read_map(sources["map"]) if "map" in sources else ()
             return pairing.pair(lp, rp, mapping, sources.get("map"))
         return self._get(self.measurements, key, read)
@@ -547,6 +558,27 @@ def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float, at=Non
                            gate=en.gate)
     except UcsioError as exc:
         return exc
+
+
+def _named_mistake(en: Entry, inputs: tuple, sol, sigma_laser: float, sigma_robot: float):
+    """The unit or order mistake a rejected entry comes from (method.mistakes),
+    refitted as the entry was: its TCP (or the joint model), its settings."""
+    from ..method.mistakes import Reading, named_mistake
+    from ..method.solve import solve
+
+    tcp, meas, at = inputs
+
+    def fit(m):
+        if en.solve_tcp:
+            got = _solve_joint(en, m, sigma_laser, sigma_robot, at)
+            if isinstance(got, UcsioError):
+                raise got
+            return got
+        return solve(m, tcp, threshold=en.threshold, min_points=en.min_points,
+                     exclude=en.exclude, no_exclusion=en.no_exclusion, reach=en.reach,
+                     sigma_laser=sigma_laser, sigma_robot=sigma_robot, at=at, gate=en.gate)
+    return named_mistake(meas, sol, fit, Reading(**dict(en.reading)),
+                         spelled=lambda key, value: f'{key} = "{value}" in the entry')
 
 
 def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> None:
@@ -676,7 +708,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
                 r.tool_tcp = _solved_tcp_tool(cache, en.tcp_tool).pose.t
             stage = "measurement"
             if en.sources is None:
-                meas = cache.measurement(en.measurement)
+                meas = cache.measurement(en.measurement, en.reading)
             else:
                 meas, paired = cache.paired(en.sources)
                 r.warnings = list(paired) + r.warnings    # the cache's list stays as it is
@@ -714,6 +746,11 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
         if isinstance(sol, UcsioError):
             r.error, r.stage = str(sol), "solve"
             continue
+        if not sol.accepted:
+            mistake = _named_mistake(r.entry, read[k], sol, sigma_laser, sigma_robot)
+            if mistake is not None:         # a unit or order mistake: not "measure again"
+                r.error, r.stage = str(mistake), "measurement"
+                continue
         if read[k][0] is not None:
             sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool

@@ -69,6 +69,28 @@ SEPARATORS = (",", ";", "\t", "|")
 #: unit norm is a typo or a wrong column, not rounding.
 QUAT_NORM_TOLERANCE = 1e-3
 SIDES = ("laser", "robot")
+#: How a CSV's numbers are written where the file cannot say: ``--laser-units``
+#: (readers.laser.UNITS), ``--angle-units`` for robot_a/b/c and robot_w/p/r,
+#: ``--quaternion-order`` for robot_q1..q4 (SPEC's order is q1 the real part).
+ANGLE_UNITS = ("deg", "rad")
+QUATERNION_ORDERS = ("wxyz", "xyzw")
+
+
+def check_reading(angle_units: str = "deg", quaternion_order: str = "wxyz") -> None:
+    """The two spellings options, from the command line, the API or a manifest."""
+    if angle_units not in ANGLE_UNITS:
+        raise UcsioError(f"--angle-units {angle_units!r}: expected deg or rad")
+    if quaternion_order not in QUATERNION_ORDERS:
+        raise UcsioError(f"--quaternion-order {quaternion_order!r}: expected wxyz or xyzw")
+
+
+def spec_orientation(form: str, orientation: np.ndarray, angle_units: str = "deg",
+               quaternion_order: str = "wxyz") -> np.ndarray:
+    """The orientation columns as written -> SPEC's reading: degrees, and
+    quaternions with the real part first."""
+    if form == "abb":
+        return orientation[:, [3, 0, 1, 2]] if quaternion_order == "xyzw" else orientation
+    return np.degrees(orientation) if angle_units == "rad" else orientation
 
 
 @dataclass
@@ -83,7 +105,7 @@ class Measurement:
     flange: np.ndarray       # (n, 4, 4) flange pose in robot world (None: a laser-side file)
     weights: np.ndarray      # (n,)
     form: str                # 'kuka' | 'abb' | 'fanuc'
-    orientation: np.ndarray  # (n, 3) or (n, 4) as written
+    orientation: np.ndarray  # (n, 3) or (n, 4) as written ((n, 0): not from a CSV)
 
     def __len__(self) -> int:
         return len(self.names)
@@ -143,18 +165,25 @@ def _split(line: str, sep: str) -> list[tuple[str, int]]:
 
 
 def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
-                     what: str = "measurement file") -> Measurement:
+                     what: str = "measurement file", **reading) -> Measurement:
     """Read a measurement CSV; UcsioError (exit 2) on anything wrong.
     ``sides``: the columns required, ``("laser",)`` or ``("robot",)`` for one
     side of a measurement (``solve --laser/--robot``); the other side's
-    columns are then not needed (and its array is None)."""
+    columns are then not needed (and its array is None). ``reading``:
+    ``laser_units``, ``angle_units``, ``quaternion_order``."""
     path = os.fspath(path)
     raw = read_bytes(path, what)
-    return parse_measurement(decode(raw), path, sides)
+    return parse_measurement(decode(raw), path, sides, **reading)
 
 
 def parse_measurement(text: str, path: str = "<measurement>",
-                      sides: tuple[str, ...] = SIDES) -> Measurement:
+                      sides: tuple[str, ...] = SIDES, *, laser_units: str = "mm",
+                      angle_units: str = "deg", quaternion_order: str = "wxyz") -> Measurement:
+    from ..readers.laser import UNITS
+
+    check_reading(angle_units, quaternion_order)
+    if laser_units not in UNITS:
+        raise UcsioError(f"--laser-units {laser_units!r}: expected one of {', '.join(UNITS)}")
     laser_side, robot_side = "laser" in sides, "robot" in sides
     text = text.lstrip("\ufeff")
     header = None
@@ -272,6 +301,8 @@ def parse_measurement(text: str, path: str = "<measurement>",
         names.append(name)
         lines.append(lineno)
 
+    if laser_side:
+        values[:, 0:3] *= UNITS[laser_units]
     if not robot_side:
         return Measurement(path=path, names=names, lines=lines, laser=values[:, 0:3].copy(),
                            flange=None, weights=weights, form=form, orientation=None)
@@ -286,7 +317,8 @@ def parse_measurement(text: str, path: str = "<measurement>",
             i = int(bad[0])
             raise UcsioError(f"robot_q1..q4 is not a unit quaternion (norm {norms[i]:.6g})",
                              file=path, line=lines[i], col=rows[i][1][columns["robot_q1"]][1])
-    flange = flange_matrices(form, orientation, position)
+    flange = flange_matrices(form, spec_orientation(form, orientation, angle_units, quaternion_order),
+                             position)
     return Measurement(path=path, names=names, lines=lines,
                        laser=None if laser is None else laser.copy(), flange=flange,
                        weights=weights, form=form, orientation=orientation.copy())
