@@ -61,6 +61,14 @@ NEAR_MISS_CUTOFF = 0.8
 #: external axes, deviations and tracker statistics.
 EXTRA_OK = re.compile(r"robot_(s|t|status|turn|e\d+|a\d+|j\d+|axis_?\d+|cf[146x]|cfg|conf\w*|"
                       r"eax\w*|ext\w*)|(laser|robot)_(d[xyz]|dist|rms|sigma|std|err\w*|unc\w*)")
+#: Orientation columns in other vendors' or tools' names (``robot_rx``,
+#: ``robot_yaw``, ``robot_qw``): the answer is the forms ucsio reads, not
+#: the nearest spelling (``robot_rx`` is one letter from ``robot_x``).
+OTHER_ORIENTATION = re.compile(r"robot_(r[xyz]|rot_?[xyz]|roll|pitch|yaw|q[wxyz]|quat\w*|"
+                               r"euler\w*|orient\w*|[abcwpr]_?deg)")
+ORIENTATION_FORMS = ("robot_a, robot_b, robot_c (KUKA A, B, C, deg); robot_q1 .. robot_q4 "
+                     "(ABB quaternion, q1 the real part); or robot_w, robot_p, robot_r (FANUC "
+                     "W, P, R, deg; also Yaskawa's Rx, Ry, Rz, the same R = Rz·Ry·Rx)")
 #: Excel's separator hint, the first line of a file: ``sep=;``.
 SEP_HINT = re.compile(r'\s*"?sep=(.)"?\s*', re.IGNORECASE)
 SEPARATORS = (",", ";", "\t", "|")
@@ -223,6 +231,9 @@ def parse_measurement(text: str, path: str = "<measurement>",
             if key in columns:
                 raise UcsioError(f"column {key!r} given twice", file=path, line=header_line, col=col)
             columns[key] = idx
+        elif OTHER_ORIENTATION.fullmatch(key):
+            raise UcsioError(f"unknown column {name.strip()!r}: the flange orientation is read "
+                             f"as {ORIENTATION_FORMS}", file=path, line=header_line, col=col)
         elif key and not EXTRA_OK.fullmatch(key):
             close = difflib.get_close_matches(key, sorted(KNOWN), n=1, cutoff=NEAR_MISS_CUTOFF)
             if close:
