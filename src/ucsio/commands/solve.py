@@ -142,14 +142,16 @@ def check_tcp(vals, shown: str) -> tuple[float, float, float]:
     return vals  # type: ignore[return-value]
 
 
-def resolve_tcp(tcp, tool) -> tuple[tuple[float, float, float] | None, bool]:
+def resolve_tcp(tcp, tool, warnings: list | None = None
+                ) -> tuple[tuple[float, float, float] | None, bool]:
     """(the TCP, whether it is solved with the frame) from ``--tcp`` (text
     X,Y,Z or ``solve``; from Python also three numbers) or ``--tool
-    FILE:NAME``; neither is an error that names the three options."""
+    FILE:NAME``; neither is an error that names the three options.
+    ``warnings`` gets what the user must read (an unset tool)."""
     if tool is not None and tcp is not None:
         raise UcsioError("give --tcp or --tool, not both")
     if tool is not None:
-        return tool_tcp(tool), False
+        return tool_tcp(tool, warnings), False
     if isinstance(tcp, str):
         if tcp.strip().casefold() == "solve":
             return None, True
@@ -160,16 +162,23 @@ def resolve_tcp(tcp, tool) -> tuple[tuple[float, float, float] | None, bool]:
     raise UcsioError(NO_TCP)
 
 
-def tool_tcp(spec: str) -> tuple[float, float, float]:
+def tool_tcp(spec: str, warnings: list | None = None) -> tuple[float, float, float]:
     """``FILE:NAME`` -> the translation of a robot-held tool (split at the
-    last ':', so ``C:\\cell\\x.mod:tool1`` works)."""
+    last ':', so ``C:\\cell\\x.mod:tool1`` works); an unset tool (the
+    controller's default) adds its warning to ``warnings``."""
     file, sep, name = spec.rpartition(":")
     if not sep or not file or not name:
         raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
     from ..parsing.controller import load
     from ..geometry.frames import tool_tcp as tcp_of
     from ..review.names import find_frame
-    return tcp_of(find_frame(load(file), name), "--tool")
+    from ..review.unset import is_set, tool_warning
+    cf = load(file)
+    frame = find_frame(cf, name)
+    tcp = tcp_of(frame, "--tool")
+    if warnings is not None and not is_set(frame, cf):
+        warnings.append(tool_warning(frame))
+    return tcp
 
 
 def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", config=None,
@@ -189,7 +198,8 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
         raise UcsioError("--uncertainty N: needs at least 2 samples")
     if uncertainty:
         solver.check_sigmas(sigma_laser, sigma_robot)
-    fixed, solve_tcp = resolve_tcp(tcp, tool)
+    tool_warnings: list[str] = []
+    fixed, solve_tcp = resolve_tcp(tcp, tool, tool_warnings)
     solver.check_sigmas(sigma_laser, sigma_robot)
     points = at
     if isinstance(at, (str, os.PathLike)):
@@ -200,6 +210,7 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
                                  config=config, robot_tool=robot_tool, robot_wobj=robot_wobj,
                                  map=map, angle_units=angle_units,
                                  quaternion_order=quaternion_order)
+    warnings = tool_warnings + warnings
     settings = dict(threshold=threshold, min_points=min_points, no_exclusion=no_exclusion,
                     reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot)
     exclude = list(exclude or ())

@@ -596,10 +596,18 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
         sol.reason = f"{sol.reason}; but {found['message']}"
 
 
-def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
-    file, _, name = spec.rpartition(":")
+def _tool_tcp(cache: _Cache, spec: str, warnings: list[str]) -> tuple[float, float, float]:
+    """The TCP of ``tool = "FILE:NAME"``; an unset tool is warned about."""
     from ..review.names import find_frame
-    return tool_tcp(find_frame(cache.controller(file), name))
+    from ..review.unset import is_set, tool_warning
+
+    file, _, name = spec.rpartition(":")
+    cf = cache.controller(file)
+    frame = find_frame(cf, name)
+    tcp = tool_tcp(frame)
+    if not is_set(frame, cf):
+        warnings.append(tool_warning(frame, "tool", "tcp = [0, 0, 0]"))
+    return tcp
 
 
 def _solved_tcp_tool(cache: _Cache, spec: str):
@@ -703,7 +711,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             if not r.simulated_set:     # the diff is then the whole measured pose
                 r.warnings = [unset_warning(frame)]
             stage = "tool"
-            tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
+            tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool, r.warnings)
             if en.tcp_tool is not None:     # where the solved TCP will go: a robot-held tool
                 r.tool_tcp = _solved_tcp_tool(cache, en.tcp_tool).pose.t
             stage = "measurement"
