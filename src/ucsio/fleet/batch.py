@@ -1036,7 +1036,25 @@ CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "d
                "angle_std", "sigma", "tolerance", "measurement", "controller", "frame", "error",
                "patched", "patch_error", "reason", "station", "points_count", "points_max",
                "points_mean", "points_worst", "worst_point", "worst_at_95", "consistency_ratio",
-               "consistency_p")
+               "consistency_p", "tcp_x", "tcp_y", "tcp_z", "tcp_solved", "tcp_std_x",
+               "tcp_std_y", "tcp_std_z", "tcp_at_95", "tool_tcp_distance")
+
+
+def _tcp_columns(r: EntryResult) -> dict[str, Any]:
+    """The TCP the entry used (given, read from a tool, or solved with the
+    frame: then its std and 95 %, and how far it lies from the named tool's)."""
+    s = r.solution
+    if s is None or r.error is not None:
+        return {}
+    row: dict[str, Any] = dict(zip(("tcp_x", "tcp_y", "tcp_z"), s.tcp))
+    solved = getattr(s, "tcp_solved", None)
+    row["tcp_solved"] = bool(solved)
+    if solved:
+        row.update({f"tcp_std_{k}": solved["std"][k] for k in "xyz"})
+        row["tcp_at_95"] = solved.get("at_95")
+        if r.tool_tcp is not None:
+            row["tool_tcp_distance"] = r.tool_tcp_dict().get("distance")
+    return row
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -1071,6 +1089,7 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
             if cons:
                 row.update({"consistency_ratio": cons.get("ratio"),
                             "consistency_p": cons.get("p")})
+        row.update(_tcp_columns(r))
         rows.append([row.get(c) for c in CSV_COLUMNS])
     return rows
 
