@@ -9,7 +9,9 @@ matplotlib, no scripts, nothing fetched from the network). Read top down:
    every patched copy that was not written, each with its reason in plain
    words and what to do next (or a green line saying nothing does);
 3. the summary cards, the roll-up per station (an entry's ``station``, else
-   its controller's folder) and the five groups of SPEC's Table 4;
+   its controller's folder), the five groups of dt_mean (the grouping of
+   the study ucsio's method follows, ``GROUPS_SOURCE``) and the noise check,
+   said once with the count of entries it concerns;
 4. the charts, each with a legend and labelled axes: dt_mean per entry on
    an axis where every group is equally wide, and each entry's measurement
    error e against the outlier threshold, on a log axis so that passing bars,
@@ -42,6 +44,7 @@ import os
 from typing import Any, Sequence
 
 from .. import defaults
+from ..method.noise import P_WARN
 from ..output import fmt
 from ..review.diff import GROUP_BOUNDS
 
@@ -179,6 +182,48 @@ def _group_axis(dt: float, top: float) -> float:
             return k + min(max((dt - lo) / (hi - lo), 0.0), 1.0)
     return float(len(edges) - 1)
 
+
+#: Where the five groups of dt_mean come from (SPEC's "Diff"): the report
+#: shows them itself, so it cites the study, not a table of it.
+GROUPS_SOURCE = ("The five groups of dt_mean (below 10, 25, 50 and 100 mm, and from 100 mm on) "
+                 "are the grouping of the published study ucsio's method follows (its Table 4); "
+                 "this run's accepted entries are counted in them here.")
+
+
+def _p(value) -> str:
+    v = _num(value)
+    return "–" if v is None else f"{v:.1g}"
+
+
+def _noise_check(entries: list) -> str:
+    """The noise check's explanation once, with how many entries it concerns
+    (each entry's details keep only its own numbers)."""
+    noisy = [e for e in entries if _dict(e.get("consistency")).get("message")
+             and e.get("status") != "error"]
+    if not noisy:
+        return ""
+    names = ", ".join(str(e.get("name")) for e in noisy[:8]) + \
+        (f" and {len(noisy) - 8} more" if len(noisy) > 8 else "")
+    return ('<p class="note warning" id="noise-check" '
+            f'data-count="{len(noisy)}">Noise check: {len(noisy)} of {len(entries)} '
+            f'entr{"y" if len(entries) == 1 else "ies"} ({_e(names)}) have residuals far above '
+            "the stated noise √(σ_laser² + σ_robot²): residuals that large would happen with "
+            f"p below {P_WARN:g} if the stated noise were right (χ²). The tracker, the robot or the "
+            "stated σ (--sigma-laser, --sigma-robot) is off. Their precision uses the "
+            "residuals' σ; each entry's details give its numbers.</p>")
+
+
+def _correlation(c: dict) -> str:
+    """The Pearson line, folded away with what it shows: near 1 whenever the
+    frames lie metres apart, whatever their errors."""
+    return ('<details class="note" id="correlation-details"><summary>Correlation of simulated '
+            'and measured positions</summary><p class="note" id="correlation" '
+            + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
+            + ">Pearson correlation of the simulated and the measured frame positions over "
+              "passing entries: " + ", ".join(f"{k} {_f(c.get(k), 5)}" for k in "xyz")
+            + ". Where the frames lie metres apart across the cells, it is near 1 whatever "
+              "their errors: it shows that each measured frame is the simulated one moved, "
+              "not how far. How far is dt_mean, above.</p></details>")
 
 def histogram_svg(dts: Sequence[tuple[float, int]], bins_per_group: int = 5,
                   tolerance: float | None = None) -> str:
@@ -698,7 +743,8 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append("<h2>By station</h2>")
     parts.append(_stations(entries))
 
-    parts.append("<h2>Groups (Table 4)</h2>")
+    parts.append("<h2>Groups by dt_mean</h2>")
+    parts.append(f'<p class="note" id="groups-source">{_e(GROUPS_SOURCE)}</p>')
     parts.append('<table id="groups"><tr><th>group</th><th>dt_mean<small>average shift, mm'
                  '</small></th><th>meaning</th><th class="n">count</th>'
                  '<th class="n">% of total</th><th class="n">mean e<small>measurement error, mm'
@@ -720,14 +766,10 @@ def render_report(data: dict, title: str = "ucsio batch report",
             f'<td class="n">{_f(g.get("percent"), 1)}</td>'
             f'<td class="n">{_f(g.get("mean_e"))}</td><td class="n">{_f(g.get("std_e"))}</td></tr>')
     parts.append("</table>")
-    c = _dict(sm.get("correlation"))
-    parts.append('<p class="note" id="correlation" '
-                 + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
-                 + ">How well the simulated positions predict the measured ones over passing "
-                   "entries (Pearson correlation, 1 = perfectly): "
-                 + ", ".join(f"{k} {_f(c.get(k), 5)}" for k in "xyz")
-                 + ". Counts by group are over accepted entries; std e is the sample standard "
-                   "deviation (n − 1), blank below two entries.</p>")
+    parts.append('<p class="note">Counts by group are over accepted entries; std e is the '
+                 "sample standard deviation (n − 1), blank below two entries.</p>")
+    parts.append(_noise_check(entries))
+    parts.append(_correlation(_dict(sm.get("correlation"))))
 
     tolerances = {_num(e.get("tolerance")) for e in entries} - {None}
     tol = tolerances.pop() if len(tolerances) == 1 else None
@@ -1002,10 +1044,13 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
                     'mm per axis.</p>')
     if _dict(e.get("worst")) and status != "error":
         body.append(_working(e))
-    msg = _dict(e.get("consistency")).get("message")
-    if msg and status != "error":
+    noise = _dict(e.get("consistency"))
+    if noise.get("message") and status != "error":     # the explanation is said once, above
         body.append(f'<p class="note warning noise-check" style="flex-basis:100%">noise check: '
-                    f'{_e(msg)}</p>')
+                    f'the residuals show {_f(noise.get("sigma_residual"), 3)} mm of noise per '
+                    f'axis, {_f(noise.get("ratio"), 1)} times the stated '
+                    f'{_f(noise.get("sigma_stated"), 3)} mm (p = {_p(noise.get("p"))}); see '
+                    '<a href="#noise-check">the noise check</a>.</p>')
     pm = _dict(e.get("points_moved"))
     if pm:
         if pm.get("count"):
