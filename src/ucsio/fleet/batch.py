@@ -56,7 +56,7 @@ SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj", "angle_units", "qua
 READING_KEYS = ("laser_units", "angle_units", "quaternion_order")
 ENTRY_KEYS = ("name", "measurement", *SOURCE_KEYS, *SOURCE_OPTIONS, "controller", "frame", "tcp",
               "tool", "threshold", "min_points", "tolerance", "exclude", "no_exclusion", "reach",
-              "points", "station", "at", "gate")
+              "points", "station", "at", "gate", "pr", "posreg")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("controller", "frame")
 
@@ -90,6 +90,8 @@ class Entry:
     at: str | None = None             # working points (CSV of point, x, y, z in the UCS), resolved
     gate: str = "reach"               # "at": the determinacy gate judges the worst working point
     reading: tuple = ()               # (key, value) of READING_KEYS the manifest gives
+    pr: int | None = None             # --patch-dir, a listing's frame: the program's register ...
+    posreg: str | None = None         # ... or the posreg.va to take an unused one from, resolved
 
 
 @dataclass
@@ -127,7 +129,11 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
 
 def _check_values(table: dict, where: str, path: str) -> None:
     """The type and range of every value a table gives (UcsioError)."""
-    for k in REQUIRED + ("measurement", "at") + SOURCE_KEYS + SOURCE_OPTIONS:
+    if "pr" in table and (isinstance(table["pr"], bool) or not isinstance(table["pr"], int)
+                          or not 1 <= table["pr"] <= 9999):
+        raise UcsioError(f"{where}: pr must be a position register number, 1 to 9999, got "
+                         f"{table['pr']!r}", file=path)
+    for k in REQUIRED + ("measurement", "at", "posreg") + SOURCE_KEYS + SOURCE_OPTIONS:
         if k in table and (not isinstance(table[k], str) or not table[k].strip()):
             raise UcsioError(f"{where}: {k} must be a non-empty string, got {table[k]!r}",
                              file=path)
@@ -244,7 +250,9 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  points=merged.get("points", False), station=merged.get("station"),
                  solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources,
                  at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate,
-                 reading=tuple((k, merged[k]) for k in READING_KEYS if k in merged))
+                 reading=tuple((k, merged[k]) for k in READING_KEYS if k in merged),
+                 pr=merged.get("pr"),
+                 posreg=_resolve(base, merged["posreg"]) if "posreg" in merged else None)
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -345,6 +353,9 @@ class EntryResult:
     tool_tcp: tuple | None = None         # tcp = "solve" with a tool: its TCP as the file holds it
     tool_patched: str | None = None       # the patched copy the solved TCP was written into
     tool_not_patched: str | None = None   # --patch-dir, tcp = "solve", no tool named: says so
+    listing: bool = False                 # the patched copy is a listing, for review only
+    program: dict | None = None           # the program written beside it that sets the frame
+    program_error: str | None = None      # why no program was written
 
     @property
     def accepted(self) -> bool:
@@ -361,6 +372,16 @@ class EntryResult:
         if not self.accepted:
             return "rejected"
         return "pass" if self.passed else "over tolerance"
+
+    @property
+    def written(self) -> list[str]:
+        """What --patch-dir wrote for the frame, in words: "patched" (a copy
+        the controller loads), or "program written" and "listing for review"."""
+        if self.patched is None:
+            return []
+        if not self.listing:
+            return ["patched"]
+        return (["program written"] if self.program else []) + ["listing for review"]
 
     @property
     def reason(self) -> str | None:
@@ -474,6 +495,13 @@ class EntryResult:
             d["warnings"] = list(self.warnings)
         if self.patched is not None:
             d["patched"] = self.patched
+            d["written"] = self.written
+        if self.listing:
+            d["listing"] = True
+        if self.program is not None:
+            d["program"] = self.program
+        if self.program_error is not None:
+            d["program_error"] = self.program_error
         if self.patch_error is not None:
             d["patch_error"] = self.patch_error
         return d
@@ -799,6 +827,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
 
     if patch_dir is not None:
         write_patches(results, frames, cache, patch_dir, manifest)
+        write_programs(results, frames)
     t5 = time.perf_counter()
     summary = summarize(results)
     return BatchResult(manifest=manifest, entries=results, summary=summary,
@@ -926,12 +955,14 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             problem = str(exc)
         except OSError as exc:
             problem = f"cannot write {target}: {exc.strerror or exc}"
-        for r, what, _ in items:
+        for r, what, name in items:
             if problem is None:
                 if what == "frame":
                     r.patched = str(target)
-                    # a FANUC listing's copy is for review: the controller
-                    # does not load .va files (patch says so too)
+                    # a listing's copy is for review (FANUC: the controller does
+                    # not load .va files): a program sets the frame instead
+                    r.listing = any(patcher.LISTING_WARNING in pr.warnings for pr in planned
+                                    if pr.frame.name.casefold() == name.casefold())
                     r.warnings += [w for pr in planned for w in pr.warnings
                                    if w == patcher.LISTING_WARNING and w not in r.warnings]
                 else:
@@ -946,6 +977,37 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                 r.patch_error = why
             elif why not in r.patch_error:      # its frame's file and its tool's file
                 r.patch_error += f"; {why}"
+
+
+def write_programs(results: list[EntryResult], frames: dict) -> None:
+    """Beside each listing's reviewed copy, the program that sets its frame,
+    as ``ucsio program`` writes it, where the frame's vendor writes one
+    (``review.program.program_writer``); its register from the entry's
+    ``pr`` or ``posreg``, else the posreg.va beside the listing. A failure
+    is the entry's ``program_error``; the listing's copy stays for review."""
+    from ..review.patch import LISTING_WARNING
+    from ..review.program import program_writer
+
+    for k, r in enumerate(results):
+        frame = frames[k][1] if k in frames else None
+        writer = program_writer(frame.vendor) if frame is not None else None
+        if not (r.listing and writer):
+            continue
+        try:
+            made = writer(r.measured, frame, os.path.dirname(r.patched), pr=r.entry.pr,
+                          posreg=r.entry.posreg)
+        except UcsioError as exc:
+            r.program_error = str(exc)
+            continue
+        except OSError as exc:
+            r.program_error = f"program not written: {exc.strerror or exc}"
+            continue
+        r.program = {k: v for k, v in made.as_dict().items() if k != "text"}
+        r.warnings = [w for w in r.warnings if w != LISTING_WARNING] + [
+            f"the controller does not load .va files: the patched copy of "
+            f"{os.path.basename(frame.file)} is for review; {os.path.basename(made.written)} "
+            f"beside it sets {frame.name} through PR[{made.pr}] (load it, read it, run it once "
+            "in T1)"]
 
 
 def _verify_combined(cf, new: bytes, planned) -> None:
@@ -1022,6 +1084,11 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
         "std_e": float(np.std(es_all, ddof=1)) if len(es_all) >= 2 else None,
         "correlation": corr,
         "patched": sum(r.patched is not None for r in results),
+        "programs": sum(r.program is not None for r in results),
+        "listings": sum(r.listing for r in results),
+        # files the controller loads: patched copies that are not listings, and programs
+        "corrected": sum(r.patched is not None and not r.listing for r in results)
+        + sum(r.program is not None for r in results),
         "tools_patched": sum(r.tool_patched is not None for r in results),
         "patch_errors": sum(r.patch_error is not None for r in results),
         "std_convention": "sample (n-1); null below 2 entries",
@@ -1037,16 +1104,18 @@ CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "d
                "patched", "patch_error", "reason", "station", "points_count", "points_max",
                "points_mean", "points_worst", "worst_point", "worst_at_95", "consistency_ratio",
                "consistency_p", "tcp_x", "tcp_y", "tcp_z", "tcp_solved", "tcp_std_x",
-               "tcp_std_y", "tcp_std_z", "tcp_at_95", "tool_tcp_distance")
+               "tcp_std_y", "tcp_std_z", "tcp_at_95", "tool_tcp_distance", "written", "program",
+               "program_error")
 
 
 def _tcp_columns(r: EntryResult) -> dict[str, Any]:
     """The TCP the entry used (given, read from a tool, or solved with the
     frame: then its std and 95 %, and how far it lies from the named tool's)."""
     s = r.solution
-    if s is None or r.error is not None:
+    tcp = getattr(s, "tcp", None)
+    if s is None or r.error is not None or tcp is None:     # any value may be missing
         return {}
-    row: dict[str, Any] = dict(zip(("tcp_x", "tcp_y", "tcp_z"), s.tcp))
+    row: dict[str, Any] = dict(zip(("tcp_x", "tcp_y", "tcp_z"), tcp))
     solved = getattr(s, "tcp_solved", None)
     row["tcp_solved"] = bool(solved)
     if solved:
@@ -1090,6 +1159,9 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
                 row.update({"consistency_ratio": cons.get("ratio"),
                             "consistency_p": cons.get("p")})
         row.update(_tcp_columns(r))
+        row.update({"written": "; ".join(r.written),
+                    "program": (r.program or {}).get("file"),
+                    "program_error": r.program_error or ""})
         rows.append([row.get(c) for c in CSV_COLUMNS])
     return rows
 

@@ -89,6 +89,7 @@ h2 { font-size: 17px; margin: 26px 0 10px; border-bottom: 1px solid var(--line);
 .card .k { color: var(--muted); font-size: 12px; }
 .card.ok .v { color: #2e7d32; } .card.warn .v { color: #b26a00; }
 .card.bad .v { color: #c62828; } .card.err .v { color: #6a1b9a; }
+.card.info .v { color: #455a64; }
 table { border-collapse: collapse; font-variant-numeric: tabular-nums; }
 th, td { padding: 3px 10px; border-bottom: 1px solid var(--line); text-align: left;
          vertical-align: top; }
@@ -104,6 +105,7 @@ td.n, th.n { text-align: right; }
 .pill { display: inline-block; padding: 0 8px; border-radius: 9px; font-size: 12px; color: #fff; }
 .pill.ok { background: #2e7d32; } .pill.warn { background: #b26a00; }
 .pill.bad { background: #c62828; } .pill.err { background: #6a1b9a; }
+.pill.info { background: #455a64; }
 figure.chart { background: var(--panel); border: 1px solid var(--line); border-radius: 6px;
                padding: 8px; margin: 0; }
 figure.chart svg { display: block; width: 100%; height: auto; }
@@ -721,9 +723,14 @@ def render_report(data: dict, title: str = "ucsio batch report",
     patching = bool(sm.get("patched") or sm.get("patch_errors")) or any(
         "patched" in e or "patch_error" in e for e in entries)
     if patching:
-        cards += [("patched copies", _f(sm.get("patched")), "ok", "patched",
-                   "corrected files written"),
-                  ("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors",
+        listings = _num(sm.get("listings")) or 0
+        corrected = sm.get("corrected", sm.get("patched"))     # an older JSON: its copies
+        cards += [("corrected files", _f(corrected), "ok", "corrected",
+                   "written for the controller to load")]
+        if listings:
+            cards += [("listings for review", _f(listings), "info", "listings",
+                       "copies the controller does not load")]
+        cards += [("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors",
                    "corrected files not written")]
     parts.append('<div class="cards" id="summary">')
     for label, value, cls, key, words in cards:
@@ -955,12 +962,22 @@ def _reason(e: dict) -> str:
     return "the dataset was rejected"
 
 
+#: What --patch-dir wrote for an entry (EntryResult.written), as a pill.
+WRITTEN_PILLS = {
+    "patched": ("ok", "the corrected controller file"),
+    "program written": ("ok", "a program that sets the frame, for the controller to load"),
+    "listing for review": ("info", "a copy the controller does not load: for review only"),
+}
+
+
 def _patch_pill(e: dict) -> str:
     if e.get("patch_error"):
         return ' <span class="pill err" title="patched copy not written">not patched</span>'
-    if e.get("patched"):
-        return ' <span class="pill ok">patched</span>'
-    return ""
+    written = e.get("written")
+    if not isinstance(written, list):       # an older JSON: a patched copy, nothing more said
+        written = ["patched"] if e.get("patched") else []
+    return "".join(f' <span class="pill {WRITTEN_PILLS[w][0]}" title="{WRITTEN_PILLS[w][1]}">'
+                   f'{_e(w)}</span>' for w in written if w in WRITTEN_PILLS)
 
 
 def _pose_rows(label: str, p: Any) -> str:
@@ -1075,8 +1092,17 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         src = f"measurement <code>{_e(e.get('measurement'))}</code>"
     src += f"; controller <code>{_e(e.get('controller'))}</code>"
     if e.get("patched"):
-        src += (f'; patched copy <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
+        what = "listing for review" if e.get("listing") else "patched copy"
+        src += (f'; {what} <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
                 f'{_e(e["patched"])}</a>')
+    program = _dict(e.get("program"))
+    if program.get("file"):
+        src += (f'; program written <a class="program" href="{_e(_href(str(program["file"]), base))}">'
+                f'{_e(program["file"])}</a> (sets {_e(program.get("frame"))} through '
+                f'PR[{_e(program.get("pr"))}])')
+    elif e.get("program_error"):
+        src += f'; no program written: {_e(e["program_error"])}'
+
     body.append(f'<p class="note" style="flex-basis:100%">{src}</p>')
     return head + "".join(body) + "</div></details>"
 
