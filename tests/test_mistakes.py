@@ -132,7 +132,7 @@ def test_a_batch_entry_names_its_manifest_key(tmp_path):
 
 # ------------------------------------------------------------------ no false alarm
 
-@settings(max_examples=60, deadline=None, derandomize=True,
+@settings(max_examples=25, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(form=st.sampled_from(["kuka", "fanuc", "abb"]), seed=st.integers(0, 10**6),
        size=st.sampled_from([(1000.0, 700.0, 250.0), (60.0, 40.0, 20.0), (8.0, 6.0, 3.0)]),
