@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import json
+import re
 import shutil
 
 import pytest
@@ -79,6 +80,12 @@ def test_the_program_is_written_beside_the_listing(tmp_path, capsys):
     assert ">patched</span>" not in row
     assert 'data-key="corrected" data-value="2"' in page
     assert 'data-key="listings" data-value="1"' in page
+    # each entry's details name the angles as its vendor does (issue 25, point 11)
+    for name, heads in (("R04 pallet", "w p r"), ("R02 table", "rx ry rz")):
+        detail = page.split(f"<b>{name}</b>", 1)[1].split("</table>", 1)[0]
+        assert re.findall(r"<th class='n'>(\w+) °</th>", detail) == heads.split()
+    table_r02 = page.split("<b>R02 table</b>", 1)[1].split("</table>", 1)[0]
+    assert "<td class='n'>-35.4196</td>" in table_r02 and "<td class='n'>-0.4196</td>" in table_r02
     # the text table
     assert main(["batch", m, "--patch-dir", tmp_path / "again"]) == 0
     text = capsys.readouterr().out

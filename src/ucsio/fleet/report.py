@@ -980,15 +980,30 @@ def _patch_pill(e: dict) -> str:
                    f'{_e(w)}</span>' for w in written if w in WRITTEN_PILLS)
 
 
-def _pose_rows(label: str, p: Any) -> str:
+def _pose_rows(label: str, p: Any, keys: str = "abc") -> str:
+    """A pose's row; ``keys``: its a/b/c in the order of the vendor's angle names."""
     if not isinstance(p, dict) or not p:
         return ""
     q = p.get("q")
     qs = ("[" + ", ".join(_f(v, 6) for v in q) + "]") if isinstance(q, (list, tuple)) else "\u2013"
     return (f"<tr><th>{label}</th><td class='n'>{_f(p.get('x'))}</td>"
             f"<td class='n'>{_f(p.get('y'))}</td><td class='n'>{_f(p.get('z'))}</td>"
-            f"<td class='n'>{_f(p.get('a'), 4)}</td><td class='n'>{_f(p.get('b'), 4)}</td>"
-            f"<td class='n'>{_f(p.get('c'), 4)}</td><td class='mono'>{qs}</td></tr>")
+            + "".join(f"<td class='n'>{_f(p.get(k), 4)}</td>" for k in keys)
+            + f"<td class='mono'>{qs}</td></tr>")
+
+
+def _delta_cells(d: dict, sim: Any, mea: Any, keys: str) -> str:
+    """The Δ row's numbers: the difference of the two rows as shown (so it
+    adds up), where both are there; else the diff's own."""
+    from ..output import shown_difference
+
+    def cell(k: str, digits: int) -> str:
+        s, m = (_num(sim.get(k)) if isinstance(sim, dict) else None,
+                _num(mea.get(k)) if isinstance(mea, dict) else None)
+        if s is None or m is None:
+            return f"<td class='n'>{_f(d.get('d' + k), digits)}</td>"
+        return f"<td class='n'>{_f(shown_difference(m, s, digits, wrap=k in 'abc'), digits)}</td>"
+    return "".join(cell(k, 3) for k in "xyz") + "".join(cell(k, 4) for k in keys)
 
 
 def _detail(i: int, e: dict, base: str | None = None) -> str:
@@ -1010,19 +1025,19 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
     for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
         body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
     if e.get("simulated") or e.get("frame"):
-        rows = _pose_rows("simulated", e.get("simulated")) + _pose_rows(
-            "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"))
+        from ..geometry.frames import angle_columns
+        cols = angle_columns(e.get("vendor"))       # the vendor's own names (FANUC w p r, ...)
+        rows = _pose_rows("simulated", e.get("simulated"), cols.keys) + _pose_rows(
+            "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"), cols.keys)
         d = e.get("diff")
         if isinstance(d, dict) and d:
-            rows += (f"<tr><th>Δ</th><td class='n'>{_f(d.get('dx'))}</td>"
-                     f"<td class='n'>{_f(d.get('dy'))}</td><td class='n'>{_f(d.get('dz'))}</td>"
-                     f"<td class='n'>{_f(d.get('da'), 4)}</td><td class='n'>{_f(d.get('db'), 4)}</td>"
-                     f"<td class='n'>{_f(d.get('dc'), 4)}</td>"
+            rows += (f"<tr><th>Δ</th>{_delta_cells(d, e.get('simulated'), e.get('frame'), cols.keys)}"
                      f"<td>angle {_f(d.get('angle'), 4)}°, dist {_f(d.get('dist'))} mm, dt_mean "
                      f"{_f(d.get('dt_mean'))} mm ({DT_WORDS}), group {_f(d.get('group'))}</td></tr>")
         body.append("<table><tr><th></th><th class='n'>x mm</th><th class='n'>y mm</th>"
-                    "<th class='n'>z mm</th><th class='n'>a °</th><th class='n'>b °</th>"
-                    "<th class='n'>c °</th><th>q</th></tr>" + rows + "</table>")
+                    "<th class='n'>z mm</th>"
+                    + "".join(f"<th class='n'>{name} °</th>" for name in cols.names)
+                    + "<th>q</th></tr>" + rows + "</table>")
     pts = [p for p in (e.get("points") or []) if isinstance(p, dict)]
     if pts:
         prow = "".join(
