@@ -285,6 +285,23 @@ def test_separator_hint_wins_over_the_guess_and_bad_hints_are_errors():
         parse_measurement(HEAD9 + "\nsep=;\n", "m.csv")
 
 
+@pytest.mark.parametrize("names", [("robot_rx", "robot_ry", "robot_rz"),
+                                   ("ROBOT_QW", "robot_qx", "robot_qy", "robot_qz"),
+                                   ("robot_roll", "robot_pitch", "robot_yaw")])
+def test_other_orientation_names_get_the_forms_read_not_a_spelling(names):
+    """robot_rx is one letter from robot_x: the answer is the orientation
+    columns each vendor's form uses."""
+    head = "point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z," + ",".join(names)
+    with pytest.raises(UcsioError) as info:
+        parse_measurement(head + "\nP1" + ",1" * (6 + len(names)) + "\n", "m.csv")
+    msg = str(info.value)
+    assert msg.startswith(f"m.csv:1:{head.index(names[0]) + 1}: unknown column {names[0]!r}")
+    assert "did you mean" not in msg
+    for columns in ("robot_a, robot_b, robot_c (KUKA", "robot_q1 .. robot_q4 (ABB",
+                    "robot_w, robot_p, robot_r (FANUC"):
+        assert columns in msg
+
+
 @pytest.mark.parametrize("name, suggestion", [("weigth", "weight"), ("laser-x", "laser_x"),
                                               ("robot_q5", "robot_q4"), ("Laser X", "laser_x"),
                                               ("points", "point"), ("robot-a", "robot_a")])

@@ -334,3 +334,33 @@ def test_laser_and_robot_files_are_both_listed():
     assert "robot <code>R03/MEASURE.dat</code>" in shown
     assert "map <code>R03/names.csv</code>" in shown
     assert "measurement <code>R03/jig_points.txt</code>" not in shown
+
+
+def test_groups_cite_the_study_and_the_noise_check_is_said_once():
+    """Issue 25, point 10: no "Table 4" the report does not show; the
+    correlation folded away with what it shows; the noise check's
+    explanation once, with a count, each entry keeping its own numbers."""
+    from ucsio.fleet.report import GROUPS_SOURCE, render_report
+    noise = {"ratio": 8.6, "p": 1e-12, "dof": 18, "sigma_residual": 0.431,
+             "sigma_stated": 0.0522, "message": "the residuals show 0.431 mm ..."}
+    entries = [{"name": f"R0{k}", "status": "pass", "accepted": True, "e": 0.4,
+                "dt_mean": 3.0, "group": 1, "pass": True, "frame": None, "frame_name": "f",
+                "controller": f"R0{k}/c.mod", "consistency": dict(noise) if k < 4 else
+                {"ratio": 1.0, "p": 0.5}} for k in range(1, 6)]
+    data = _one(entries[0], total=5, passed=5, errors=0,
+                correlation={"x": 0.99999, "y": 1.0, "z": 0.99998})
+    data["entries"] = entries
+    page = render_report(data).split('<script type="application/json"', 1)[0]
+    assert "Table 4)</h2>" not in page and "<h2>Groups by dt_mean</h2>" in page
+    assert html.escape(GROUPS_SOURCE) in page
+    p = _Collect()
+    p.feed(page)
+    once = [a for t, a in p.tags if a.get("id") == "noise-check"]
+    assert len(once) == 1 and once[0]["data-count"] == "3"
+    assert page.count("would happen with p below") == 1
+    assert "3 of 5 entries (R01, R02, R03)" in page
+    assert page.count('class="note warning noise-check"') == 3
+    assert "0.431 mm of noise per axis, 8.6 times the stated 0.052 mm" in page
+    folded = page.split('<details class="note" id="correlation-details">', 1)[1]
+    assert 'id="correlation"' in folded.split("</details>", 1)[0]
+    assert "not how far" in folded

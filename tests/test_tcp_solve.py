@@ -472,6 +472,22 @@ def test_batch_shows_the_solved_tcp_and_patches_it_into_the_named_tool(tmp_path,
     assert held["distance"] == pytest.approx(
         float(np.linalg.norm(np.array([t["x"], t["y"], t["z"]]) - [10.2, -29.8, 179.1])))
     assert "tool_not_patched" in none and none.get("tool") is None
+    # the CSV too (issue 25, point 9): the TCP used, solved or given, and its doubt
+    import csv
+    given = tmp_path / "given.toml"
+    given.write_text(m.read_text() + '[[entry]]\nname = "given"\ncontroller = "Other.mod"\n'
+                     'frame = "wOther"\ntcp = [12.5, -30.25, 180.0]\n')
+    main(["batch", str(given), "--csv", str(tmp_path / "fleet.csv")])
+    capsys.readouterr()
+    solved, _, fixed = csv.DictReader((tmp_path / "fleet.csv").open(encoding="utf-8"))
+    assert [float(solved[f"tcp_{k}"]) for k in "xyz"] == pytest.approx([t[k] for k in "xyz"])
+    assert [float(solved[f"tcp_std_{k}"]) for k in "xyz"] == \
+        pytest.approx([t["std"][k] for k in "xyz"])
+    assert solved["tcp_solved"] == "true"
+    assert float(solved["tcp_at_95"]) == pytest.approx(t["at_95"])
+    assert float(solved["tool_tcp_distance"]) == pytest.approx(held["distance"])
+    assert [fixed[f"tcp_{k}"] for k in "xyz"] == ["12.5", "-30.25", "180.0"]
+    assert fixed["tcp_solved"] == "false" and fixed["tcp_std_x"] == fixed["tcp_at_95"] == ""
 
 
 def test_manifest_tool_beside_tcp(tmp_path, capsys):

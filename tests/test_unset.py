@@ -145,3 +145,27 @@ def test_diff_warns_on_an_unset_fanuc_frame(tmp_path, capsys):
     assert main(["diff", str(va), "--frame", "UF3", "--measured", str(sol), "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["set"] is False and "UF3 is unset" in d["warning"]
+
+
+# -- a TCP taken from an unset tool (issue 25, point 6) ----------------------------------
+def test_a_tcp_from_an_unset_tool_is_warned_about(tmp_path, capsys):
+    """TOOL_DATA[4] is zero and unnamed: used as TCP 0,0,0, but not without a word."""
+    assert main(["solve", str(MEAS), "--tool", f"{CELL_CONFIG}:TOOL_DATA[4]", "--json"]) == 1
+    captured = capsys.readouterr()
+    said = "--tool: TOOL_DATA[4] is unset (all six values 0 and no name"
+    assert said in captured.err and "--tcp 0,0,0" in captured.err
+    assert any(said in w for w in json.loads(captured.out)["warnings"])
+    main(["solve", str(MEAS), "--tool", f"{CELL_CONFIG}:TOOL_DATA[1]", "--json"])
+    assert "is unset" not in capsys.readouterr().err
+    # batch: the entry's warnings, in the manifest's words
+    shutil.copy(CELL_CONFIG, tmp_path / "$config.dat")
+    shutil.copy(MEAS, tmp_path / "m.csv")
+    (tmp_path / "m.toml").write_text(
+        '[defaults]\ncontroller = "$config.dat"\nmeasurement = "m.csv"\nframe = "BASE_DATA[1]"\n'
+        '[[entry]]\nname = "unset tool"\ntool = "$config.dat:TOOL_DATA[4]"\n'
+        '[[entry]]\nname = "set tool"\ntool = "$config.dat:TOOL_DATA[1]"\n')
+    main(["batch", str(tmp_path / "m.toml"), "--json"])
+    unset, set_ = json.loads(capsys.readouterr().out)["entries"]
+    assert any(w.startswith("tool: TOOL_DATA[4] is unset") and "tcp = [0, 0, 0]" in w
+               for w in unset["warnings"])
+    assert not any("is unset" in w for w in set_.get("warnings", []))

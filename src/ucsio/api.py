@@ -122,7 +122,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
           no_exclusion: bool = False, reach: float = defaults.REACH, at: Any = None,
           gate: str = "reach", uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
-          seed: int = 0) -> SolveResult:
+          seed: int = 0, angle_units: str = "deg",
+          quaternion_order: str = "wxyz") -> SolveResult:
     """``ucsio solve --json``: the measured UCS in robot world (Horn's
     method, leave-one-out outlier exclusion, the determinacy gate).
 
@@ -139,9 +140,12 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
     points: a CSV of point, x, y, z in the UCS, mm, or
     ``readers.points.Points``), ``gate`` ("reach" or "at"), ``uncertainty``
     (Monte Carlo samples), ``sigma_laser``/``sigma_robot`` (mm per axis),
-    ``seed``: as the options of those names.
+    ``seed``, ``angle_units`` ("deg" or "rad": a CSV's robot_a/b/c or
+    robot_w/p/r), ``quaternion_order`` ("wxyz" or "xyzw": a CSV's
+    robot_q1..q4): as the options of those names.
 
-    A rejected dataset is a result with ``accepted`` False and ``reason``.
+    A rejected dataset is a result with ``accepted`` False and ``reason``;
+    one a unit or order mistake explains is a UcsioError that names it.
     ``.pose`` is the frame as a ``Pose``; ``.solution`` the solver's object."""
     from .commands import solve as command
     sol, doc, _warnings = command.solve(
@@ -149,7 +153,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
         robot_tool=robot_tool, robot_wobj=robot_wobj, map=map, tcp=tcp, tool=tool,
         threshold=threshold, min_points=min_points, exclude=list(exclude),
         no_exclusion=no_exclusion, reach=reach, at=at, gate=gate, uncertainty=uncertainty,
-        sigma_laser=sigma_laser, sigma_robot=sigma_robot, seed=seed)
+        sigma_laser=sigma_laser, sigma_robot=sigma_robot, seed=seed, angle_units=angle_units,
+        quaternion_order=quaternion_order)
     result = _document(SolveResult, doc)
     result.__dict__["solution"] = sol
     return result

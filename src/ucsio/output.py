@@ -75,6 +75,16 @@ def fmt(v: Any, digits: int = 3, none: str = "-") -> str:
     return str(v)
 
 
+def shown_difference(new: float, old: float, digits: int, wrap: bool = False) -> float:
+    """new − old of the two values as a table shows them (``digits``
+    decimals), so a Δ row adds up to the rows above it; ``wrap``: an angle's,
+    in (−180, 180]."""
+    d = round(new, digits) - round(old, digits)
+    if wrap:
+        d = -((-d + 180.0) % 360.0 - 180.0)
+    return round(d, digits) + 0.0
+
+
 def table(headers: Sequence[str], rows: Iterable[Sequence[Any]], right: set[int] | None = None) -> str:
     rows = [[str(c) for c in r] for r in rows]
     widths = [len(h) for h in headers]

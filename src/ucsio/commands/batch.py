@@ -144,7 +144,8 @@ def run(args) -> int:
         if path:
             print(f"wrote {path} (--{opt})", file=sys.stderr)
     if args.patch_dir is not None:
-        copies = sorted({p for r in result.entries for p in (r.patched, r.tool_patched)
+        copies = sorted({p for r in result.entries
+                         for p in (r.patched, r.tool_patched, (r.program or {}).get("file"))
                          if p is not None})
         if copies:
             print(f"wrote {len(copies)} patched cop{'ies' if len(copies) != 1 else 'y'} "
@@ -263,7 +264,7 @@ def render(result, patching: bool | None = None) -> str:
             row.append(f"{w['name']} {w['at_95']:.3f}" if w else "-")
         if patching:
             row.append("REFUSED" if r.patch_error is not None else
-                       "written" if r.patched is not None else "-")
+                       "; ".join(r.written) or "-")
         rows.append(row)
     headers = ["entry", "status", "used", "e", "dt_mean", "group", "dx", "dy", "dz", "angle"]
     if points:
@@ -304,6 +305,11 @@ def render(result, patching: bool | None = None) -> str:
         out.append("")
         out.append("patch errors (no patched copy written for these):")
         out.extend(f"  {r.entry.name}: {r.patch_error}" for r in refused)
+    no_program = [r for r in result.entries if r.program_error is not None]
+    if no_program:
+        out.append("")
+        out.append("programs not written (the listing's copy is for review only):")
+        out.extend(f"  {r.entry.name}: {r.program_error}" for r in no_program)
     warned = [r for r in result.entries if r.warnings]
     if warned:
         out.append("")
@@ -341,7 +347,11 @@ def render(result, patching: bool | None = None) -> str:
                f"{sm['over_tolerance']}   rejected {sm['rejected']}   errors {sm['errors']}   "
                f"success rate {100 * sm['success_rate']:.1f} %")
     if patching:
-        out.append(f"patched {sm.get('patched', 0)}   patch errors {sm.get('patch_errors', 0)}")
+        listings = sm.get("listings", 0)
+        out.append(f"patched {sm.get('patched', 0) - listings}   "
+                   + (f"programs written {sm.get('programs', 0)}   listings for review "
+                      f"{listings}   " if listings else "")
+                   + f"patch errors {sm.get('patch_errors', 0)}")
     out.append("correlation simulated vs measured (passing entries): "
                + "   ".join(f"{k} {fmt(c.get(k), 5)}" for k in "xyz"))
     return "\n".join(out) + "\n"

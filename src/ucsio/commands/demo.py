@@ -15,6 +15,7 @@ import sys
 
 from .. import defaults
 from ..output import emit_json, fmt, paint, paint_diff, table
+from .diff import delta_table
 
 
 def add_arguments(p) -> None:
@@ -96,15 +97,7 @@ def print_cell(cell: dict) -> None:
               + ", ".join(f"{v:.3f}" for v in tool["tcp"]) + ")")
     print()
     print("2. diff: measured - simulated")
-    sim, mea = d["simulated"], d["measured"]
-    # the vendor's own angles: FANUC W, P, R are KUKA's C, B, A (one matrix, SPEC)
-    angles = "cba" if cell["vendor"] == "fanuc" else "abc"
-    rows = [["simulated", *(fmt(sim[k]) for k in "xyz"), *(fmt(sim[k], 4) for k in angles)],
-            ["measured", *(fmt(mea[k]) for k in "xyz"), *(fmt(mea[k], 4) for k in angles)],
-            ["delta", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
-             *(f"{d['d' + k]:+.4f}" for k in angles)]]
-    heads = ["w", "p", "r"] if cell["vendor"] == "fanuc" else ["a", "b", "c"]
-    print(indent(table(["", "x", "y", "z", *heads], rows, right={1, 2, 3, 4, 5, 6})))
+    print(indent(delta_table(d["simulated"], d["measured"], cell["vendor"], "delta")))
     print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
           f"group {d['group']}, {paint('PASS', 'pass') if d['pass'] else paint('FAIL', 'fail')} "
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")

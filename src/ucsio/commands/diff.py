@@ -29,7 +29,7 @@ from __future__ import annotations
 import os
 import sys
 
-from ..output import emit_json, fmt, table
+from ..output import emit_json, fmt, shown_difference, table
 
 
 def add_arguments(p) -> None:
@@ -201,16 +201,9 @@ def _one_frame(args) -> int:
         return 0 if d["pass"] else 1
     if "warning" in d:
         print(f"ucsio: warning: {d['warning']}", file=sys.stderr)
-    s, m = d["simulated"], d["measured"]
-    # FANUC: W, P, R as the controller writes them (a = r, b = p, c = w)
-    angles, names = (("c", "b", "a"), ["w", "p", "r"]) if "dw" in d else ("abc", ["a", "b", "c"])
-    rows = [["simulated", *(fmt(s[k]) for k in "xyz"), *(fmt(s[k], 4) for k in angles)],
-            ["measured", *(fmt(m[k]) for k in "xyz"), *(fmt(m[k], 4) for k in angles)],
-            ["Δ", *(f"{d[k]:+.3f}" for k in ("dx", "dy", "dz")),
-             *(f"{d['d' + k]:+.4f}" for k in angles)]]
     label = f" ({d['label']})" if d.get("label") else ""
     print(f"{d['name']}{label}  {d['type']}  {d['file']}:{d['line']}")
-    print(table(["", "x", "y", "z", *names], rows, right={1, 2, 3, 4, 5, 6}))
+    print(delta_table(d["simulated"], d["measured"], d.get("vendor"), "Δ"))
     from ..output import paint
     verdict = paint("PASS", "pass") if d["pass"] else paint("FAIL", "fail")
     print(f"angle {d['angle']:.4f} deg  dist {d['dist']:.3f} mm  dt_mean {d['dt_mean']:.3f} mm  "
@@ -218,6 +211,27 @@ def _one_frame(args) -> int:
     if args.points:
         print(_points_text(d))
     return 0 if d["pass"] else 1
+
+
+def delta_table(sim: dict, mea: dict, vendor: str | None, delta: str = "Δ") -> str:
+    """Simulated, measured and their difference, in the vendor's own angle
+    names (geometry.frames.angle_columns) and, where it writes one, its
+    quaternion. The Δ row is the difference of the numbers shown above it, so
+    it adds up (SPEC's unrounded Δ is in --json)."""
+    from ..geometry.frames import angle_columns
+
+    cols = angle_columns(vendor)
+    rows = []
+    for head, pose in (("simulated", sim), ("measured", mea)):
+        row = [head, *(fmt(pose[k]) for k in "xyz"), *(fmt(pose[k], 4) for k in cols.keys)]
+        if cols.quaternion:
+            row.append("[" + ", ".join(f"{v:.6f}" for v in pose["q"]) + "]")
+        rows.append(row)
+    rows.append([delta, *(f"{shown_difference(mea[k], sim[k], 3):+.3f}" for k in "xyz"),
+                 *(f"{shown_difference(mea[k], sim[k], 4, wrap=True):+.4f}" for k in cols.keys)]
+                + ([""] if cols.quaternion else []))
+    return table(["", "x", "y", "z", *cols.names] + (["q"] if cols.quaternion else []), rows,
+                 right={1, 2, 3, 4, 5, 6})
 
 
 def _points_text(d: dict) -> str:

@@ -52,15 +52,18 @@ def run(args) -> int:
         return status
     frames = [f for _, c in parsed for f in c.frames if args.all or is_set(f, c)]
     unset = sum(len(c.frames) for _, c in parsed) - len(frames)
-    # FANUC alone: W, P, R as the controller writes them (a = r, b = p, c = w)
-    fanuc = bool(frames) and all(f.vendor == "fanuc" for f in frames)
+    # the vendor's own angle names where every frame is one vendor's (FANUC W, P, R; ABB
+    # RobotStudio's rx, ry, rz beside the quaternion), else KUKA's a, b, c
+    from ..geometry.frames import angle_columns
+    cols = angle_columns({f.vendor for f in frames})
     rows = []
     for f in frames:
         p = f.pose
         if p is None:
             nums = ["-"] * 6 + ["-"]
         else:
-            angles = p.wpr if fanuc else p.abc
+            abc = dict(zip("abc", p.abc))
+            angles = [abc[k] for k in cols.keys]
             nums = [fmt(v) for v in (p.x, p.y, p.z)] + [fmt(v, 4) for v in angles] + \
                    ["[" + ", ".join(f"{v:.6f}" for v in p.q) + "]"]
         ref = f.reference
@@ -69,8 +72,7 @@ def run(args) -> int:
             ref += f" ({role.replace('_', ' ')})"
         rows.append([f.name, f.type, f.label or "", ref, *nums, f"{f.file}:{f.line}"])
     if rows:
-        angles = ["w", "p", "r"] if fanuc else ["a", "b", "c"]
-        print(table(["name", "type", "label", "ref", "x", "y", "z", *angles, "q", "at"],
+        print(table(["name", "type", "label", "ref", "x", "y", "z", *cols.names, "q", "at"],
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
         print("no set frames" if unset else "no frames")

@@ -68,7 +68,13 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
                    help="laser tracker points: SPEC CSV, SpatialAnalyzer ASCII export, or a "
                         "name x y z table")
     g.add_argument("--laser-units", choices=("mm", "m", "in"), default="mm",
-                   help="units of the laser file's coordinates (default mm)")
+                   help="units of the laser coordinates, in the laser file or MEAS.csv "
+                        "(default mm)")
+    g.add_argument("--angle-units", choices=("deg", "rad"), default="deg",
+                   help="units of a CSV's robot_a/b/c or robot_w/p/r (default deg)")
+    g.add_argument("--quaternion-order", choices=("wxyz", "xyzw"), default="wxyz",
+                   help="order of a CSV's robot_q1..q4: wxyz, the real part first as ABB "
+                        "writes it (default), or xyzw")
     g.add_argument("--robot", metavar="FILE", default=None,
                    help="flange poses: SPEC CSV (robot_* columns), a KUKA program .dat "
                         "(E6POS/POS/FRAME with FDAT), an ABB module (robtargets), a FANUC TP "
@@ -87,7 +93,8 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
 
 
 def read_inputs(measurement=None, laser=None, robot=None, *, laser_units: str = "mm",
-                config=None, robot_tool: str = "tool0", robot_wobj: str = "wobj0", map=None):
+                config=None, robot_tool: str = "tool0", robot_wobj: str = "wobj0", map=None,
+                angle_units: str = "deg", quaternion_order: str = "wxyz"):
     """(Measurement, warnings) from MEAS.csv or from --laser and --robot."""
     both = laser is not None and robot is not None
     if measurement is not None and (laser is not None or robot is not None):
@@ -99,14 +106,16 @@ def read_inputs(measurement=None, laser=None, robot=None, *, laser_units: str = 
             raise UcsioError(f"solve needs {missing}")
         from ..readers import laser as lasers, pairing, robot as robots
         lp = lasers.read_laser(laser, laser_units)
-        rp = robots.read_robot(robot, config=config, tool=robot_tool, wobj=robot_wobj)
+        rp = robots.read_robot(robot, config=config, tool=robot_tool, wobj=robot_wobj,
+                               angle_units=angle_units, quaternion_order=quaternion_order)
         mapping = pairing.read_map(map) if map else ()
         return pairing.pair(lp, rp, mapping, map)
     for opt, given in (("--map", map), ("--config", config)):
         if given is not None:
             raise UcsioError(f"{opt} goes with --laser and --robot")
     from ..method.measurement import read_measurement
-    return read_measurement(measurement), []
+    return read_measurement(measurement, laser_units=laser_units, angle_units=angle_units,
+                            quaternion_order=quaternion_order), []
 
 
 def parse_tcp(text: str) -> tuple[float, float, float]:
@@ -133,14 +142,16 @@ def check_tcp(vals, shown: str) -> tuple[float, float, float]:
     return vals  # type: ignore[return-value]
 
 
-def resolve_tcp(tcp, tool) -> tuple[tuple[float, float, float] | None, bool]:
+def resolve_tcp(tcp, tool, warnings: list | None = None
+                ) -> tuple[tuple[float, float, float] | None, bool]:
     """(the TCP, whether it is solved with the frame) from ``--tcp`` (text
     X,Y,Z or ``solve``; from Python also three numbers) or ``--tool
-    FILE:NAME``; neither is an error that names the three options."""
+    FILE:NAME``; neither is an error that names the three options.
+    ``warnings`` gets what the user must read (an unset tool)."""
     if tool is not None and tcp is not None:
         raise UcsioError("give --tcp or --tool, not both")
     if tool is not None:
-        return tool_tcp(tool), False
+        return tool_tcp(tool, warnings), False
     if isinstance(tcp, str):
         if tcp.strip().casefold() == "solve":
             return None, True
@@ -151,16 +162,23 @@ def resolve_tcp(tcp, tool) -> tuple[tuple[float, float, float] | None, bool]:
     raise UcsioError(NO_TCP)
 
 
-def tool_tcp(spec: str) -> tuple[float, float, float]:
+def tool_tcp(spec: str, warnings: list | None = None) -> tuple[float, float, float]:
     """``FILE:NAME`` -> the translation of a robot-held tool (split at the
-    last ':', so ``C:\\cell\\x.mod:tool1`` works)."""
+    last ':', so ``C:\\cell\\x.mod:tool1`` works); an unset tool (the
+    controller's default) adds its warning to ``warnings``."""
     file, sep, name = spec.rpartition(":")
     if not sep or not file or not name:
         raise UcsioError(f"--tool {spec!r}: expected FILE:NAME")
     from ..parsing.controller import load
     from ..geometry.frames import tool_tcp as tcp_of
     from ..review.names import find_frame
-    return tcp_of(find_frame(load(file), name), "--tool")
+    from ..review.unset import is_set, tool_warning
+    cf = load(file)
+    frame = find_frame(cf, name)
+    tcp = tcp_of(frame, "--tool")
+    if warnings is not None and not is_set(frame, cf):
+        warnings.append(tool_warning(frame))
+    return tcp
 
 
 def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", config=None,
@@ -169,7 +187,7 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
           exclude=(), no_exclusion: bool = False, reach: float = defaults.REACH, at=None,
           gate: str = "reach", uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
-          seed: int = 0):
+          seed: int = 0, angle_units: str = "deg", quaternion_order: str = "wxyz"):
     """The command's work, for ``run`` and ``ucsio.api.solve`` alike: (the
     solver's Solution, --json's document without ``schema_version``, the
     readers' warnings). Each keyword is the option of that name; ``at`` may
@@ -180,7 +198,8 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
         raise UcsioError("--uncertainty N: needs at least 2 samples")
     if uncertainty:
         solver.check_sigmas(sigma_laser, sigma_robot)
-    fixed, solve_tcp = resolve_tcp(tcp, tool)
+    tool_warnings: list[str] = []
+    fixed, solve_tcp = resolve_tcp(tcp, tool, tool_warnings)
     solver.check_sigmas(sigma_laser, sigma_robot)
     points = at
     if isinstance(at, (str, os.PathLike)):
@@ -189,21 +208,32 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
     solver.check_gate(gate, points)
     meas, warnings = read_inputs(measurement, laser, robot, laser_units=laser_units,
                                  config=config, robot_tool=robot_tool, robot_wobj=robot_wobj,
-                                 map=map)
+                                 map=map, angle_units=angle_units,
+                                 quaternion_order=quaternion_order)
+    warnings = tool_warnings + warnings
     settings = dict(threshold=threshold, min_points=min_points, no_exclusion=no_exclusion,
                     reach=reach, sigma_laser=sigma_laser, sigma_robot=sigma_robot)
     exclude = list(exclude or ())
-    if solve_tcp:
-        from ..method.tcp_solve import solve_joint
-        sol = solve_joint(meas, exclude=exclude, at=points, gate=gate, **settings)
-    else:
-        sol = solver.solve(meas, fixed, exclude=exclude, tool=tool, at=points, gate=gate,
-                           **settings)
-        if not sol.accepted:
-            from ..method.tcp_solve import diagnose
-            sol.diagnosis = diagnose(meas, sol, **settings)
-            if sol.diagnosis:
-                sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
+
+    def fit(m):
+        if solve_tcp:
+            from ..method.tcp_solve import solve_joint
+            return solve_joint(m, exclude=exclude, at=points, gate=gate, **settings)
+        return solver.solve(m, fixed, exclude=exclude, tool=tool, at=points, gate=gate,
+                            **settings)
+
+    sol = fit(meas)
+    if not sol.accepted:            # a unit or order mistake is named, not "measure again"
+        from ..method.mistakes import Reading, named_mistake
+        mistake = named_mistake(meas, sol, fit, Reading(laser_units, angle_units,
+                                                        quaternion_order))
+        if mistake is not None:
+            raise mistake
+    if not solve_tcp and not sol.accepted:
+        from ..method.tcp_solve import diagnose
+        sol.diagnosis = diagnose(meas, sol, **settings)
+        if sol.diagnosis:
+            sol.reason = f"{sol.reason}; but {sol.diagnosis['message']}"
     if sol.working_points is not None:
         sol.at_source = os.fspath(at) if isinstance(at, (str, os.PathLike)) else \
             getattr(points, "path", None)

@@ -51,10 +51,12 @@ _BACKUP_FOLDER = re.compile(r"(?:KRC|R\d|SYSTEM|PROGRAM|RAPID|TASK\d+|PROGMOD|SY
 #: the two sides of a measurement where they live, instead of ``measurement``
 #: (``solve --laser/--robot``; paths resolved like the others)
 SOURCE_KEYS = ("laser", "robot", "config", "map")
-SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj")
+SOURCE_OPTIONS = ("laser_units", "robot_tool", "robot_wobj", "angle_units", "quaternion_order")
+#: how a measurement's numbers are written (solve's options of those names), for either kind
+READING_KEYS = ("laser_units", "angle_units", "quaternion_order")
 ENTRY_KEYS = ("name", "measurement", *SOURCE_KEYS, *SOURCE_OPTIONS, "controller", "frame", "tcp",
               "tool", "threshold", "min_points", "tolerance", "exclude", "no_exclusion", "reach",
-              "points", "station", "at", "gate")
+              "points", "station", "at", "gate", "pr", "posreg")
 DEFAULT_KEYS = tuple(k for k in ENTRY_KEYS if k != "name")
 REQUIRED = ("controller", "frame")
 
@@ -87,6 +89,9 @@ class Entry:
     sources: dict | None = None       # laser, robot, config, map, laser_units, robot_tool, robot_wobj
     at: str | None = None             # working points (CSV of point, x, y, z in the UCS), resolved
     gate: str = "reach"               # "at": the determinacy gate judges the worst working point
+    reading: tuple = ()               # (key, value) of READING_KEYS the manifest gives
+    pr: int | None = None             # --patch-dir, a listing's frame: the program's register ...
+    posreg: str | None = None         # ... or the posreg.va to take an unused one from, resolved
 
 
 @dataclass
@@ -124,7 +129,11 @@ def _check_table(table: dict, where: str, allowed: Sequence[str], path: str) -> 
 
 def _check_values(table: dict, where: str, path: str) -> None:
     """The type and range of every value a table gives (UcsioError)."""
-    for k in REQUIRED + ("measurement", "at") + SOURCE_KEYS + SOURCE_OPTIONS:
+    if "pr" in table and (isinstance(table["pr"], bool) or not isinstance(table["pr"], int)
+                          or not 1 <= table["pr"] <= 9999):
+        raise UcsioError(f"{where}: pr must be a position register number, 1 to 9999, got "
+                         f"{table['pr']!r}", file=path)
+    for k in REQUIRED + ("measurement", "at", "posreg") + SOURCE_KEYS + SOURCE_OPTIONS:
         if k in table and (not isinstance(table[k], str) or not table[k].strip()):
             raise UcsioError(f"{where}: {k} must be a non-empty string, got {table[k]!r}",
                              file=path)
@@ -136,6 +145,10 @@ def _check_values(table: dict, where: str, path: str) -> None:
     if "laser_units" in table and table["laser_units"] not in ("mm", "m", "in"):
         raise UcsioError(f"{where}: laser_units must be \"mm\", \"m\" or \"in\", got "
                          f"{table['laser_units']!r}", file=path)
+    for key, allowed in (("angle_units", ("deg", "rad")), ("quaternion_order", ("wxyz", "xyzw"))):
+        if key in table and table[key] not in allowed:
+            raise UcsioError(f"{where}: {key} must be \"{allowed[0]}\" or \"{allowed[1]}\", "
+                             f"got {table[key]!r}", file=path)
     if "tcp" in table and table["tcp"] != "solve":
         v = table["tcp"]
         if not isinstance(v, list) or len(v) != 3:
@@ -236,7 +249,10 @@ def _entry(i: int, name: str, raw: dict, defaults: dict, label: str, base: Path,
                  reach=float(merged.get("reach", REACH)),
                  points=merged.get("points", False), station=merged.get("station"),
                  solve_tcp=solve_tcp, tcp_tool=tcp_tool, sources=sources,
-                 at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate)
+                 at=_resolve(base, merged["at"]) if "at" in merged else None, gate=gate,
+                 reading=tuple((k, merged[k]) for k in READING_KEYS if k in merged),
+                 pr=merged.get("pr"),
+                 posreg=_resolve(base, merged["posreg"]) if "posreg" in merged else None)
 
 
 def _broken_entry(i: int, name: str, raw: dict, defaults: dict, base: Path,
@@ -337,6 +353,9 @@ class EntryResult:
     tool_tcp: tuple | None = None         # tcp = "solve" with a tool: its TCP as the file holds it
     tool_patched: str | None = None       # the patched copy the solved TCP was written into
     tool_not_patched: str | None = None   # --patch-dir, tcp = "solve", no tool named: says so
+    listing: bool = False                 # the patched copy is a listing, for review only
+    program: dict | None = None           # the program written beside it that sets the frame
+    program_error: str | None = None      # why no program was written
 
     @property
     def accepted(self) -> bool:
@@ -353,6 +372,16 @@ class EntryResult:
         if not self.accepted:
             return "rejected"
         return "pass" if self.passed else "over tolerance"
+
+    @property
+    def written(self) -> list[str]:
+        """What --patch-dir wrote for the frame, in words: "patched" (a copy
+        the controller loads), or "program written" and "listing for review"."""
+        if self.patched is None:
+            return []
+        if not self.listing:
+            return ["patched"]
+        return (["program written"] if self.program else []) + ["listing for review"]
 
     @property
     def reason(self) -> str | None:
@@ -466,6 +495,13 @@ class EntryResult:
             d["warnings"] = list(self.warnings)
         if self.patched is not None:
             d["patched"] = self.patched
+            d["written"] = self.written
+        if self.listing:
+            d["listing"] = True
+        if self.program is not None:
+            d["program"] = self.program
+        if self.program_error is not None:
+            d["program_error"] = self.program_error
         if self.patch_error is not None:
             d["patch_error"] = self.patch_error
         return d
@@ -513,9 +549,10 @@ class _Cache:
         from ..parsing.controller import load
         return self._get(self.controllers, path, load)
 
-    def measurement(self, path: str):
+    def measurement(self, path: str, reading: tuple = ()):
         from ..method.measurement import read_measurement
-        return self._get(self.measurements, path, read_measurement)
+        return self._get(self.measurements, (path, reading),
+                         lambda _key: read_measurement(path, **dict(reading)))
 
     def points(self, path: str):
         """A working-point file (readers.points), read once per run."""
@@ -531,7 +568,9 @@ class _Cache:
             lp = laser.read_laser(sources["laser"], sources.get("laser_units", "mm"))
             rp = robot.read_robot(sources["robot"], config=sources.get("config"),
                                   tool=sources.get("robot_tool", "tool0"),
-                                  wobj=sources.get("robot_wobj", "wobj0"))
+                                  wobj=sources.get("robot_wobj", "wobj0"),
+                                  angle_units=sources.get("angle_units", "deg"),
+                                  quaternion_order=sources.get("quaternion_order", "wxyz"))
             mapping = pairing.read_map(sources["map"]) if "map" in sources else ()
             return pairing.pair(lp, rp, mapping, sources.get("map"))
         return self._get(self.measurements, key, read)
@@ -549,6 +588,27 @@ def _solve_joint(en: Entry, meas, sigma_laser: float, sigma_robot: float, at=Non
         return exc
 
 
+def _named_mistake(en: Entry, inputs: tuple, sol, sigma_laser: float, sigma_robot: float):
+    """The unit or order mistake a rejected entry comes from (method.mistakes),
+    refitted as the entry was: its TCP (or the joint model), its settings."""
+    from ..method.mistakes import Reading, named_mistake
+    from ..method.solve import solve
+
+    tcp, meas, at = inputs
+
+    def fit(m):
+        if en.solve_tcp:
+            got = _solve_joint(en, m, sigma_laser, sigma_robot, at)
+            if isinstance(got, UcsioError):
+                raise got
+            return got
+        return solve(m, tcp, threshold=en.threshold, min_points=en.min_points,
+                     exclude=en.exclude, no_exclusion=en.no_exclusion, reach=en.reach,
+                     sigma_laser=sigma_laser, sigma_robot=sigma_robot, at=at, gate=en.gate)
+    return named_mistake(meas, sol, fit, Reading(**dict(en.reading)),
+                         spelled=lambda key, value: f'{key} = "{value}" in the entry')
+
+
 def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> None:
     """A rejected fixed-TCP entry whose residuals a TCP change explains says
     so in its reason (tcp_solve.diagnose), as ``solve`` does."""
@@ -564,10 +624,18 @@ def _diagnose(en: Entry, meas, sol, sigma_laser: float, sigma_robot: float) -> N
         sol.reason = f"{sol.reason}; but {found['message']}"
 
 
-def _tool_tcp(cache: _Cache, spec: str) -> tuple[float, float, float]:
-    file, _, name = spec.rpartition(":")
+def _tool_tcp(cache: _Cache, spec: str, warnings: list[str]) -> tuple[float, float, float]:
+    """The TCP of ``tool = "FILE:NAME"``; an unset tool is warned about."""
     from ..review.names import find_frame
-    return tool_tcp(find_frame(cache.controller(file), name))
+    from ..review.unset import is_set, tool_warning
+
+    file, _, name = spec.rpartition(":")
+    cf = cache.controller(file)
+    frame = find_frame(cf, name)
+    tcp = tool_tcp(frame)
+    if not is_set(frame, cf):
+        warnings.append(tool_warning(frame, "tool", "tcp = [0, 0, 0]"))
+    return tcp
 
 
 def _solved_tcp_tool(cache: _Cache, spec: str):
@@ -671,12 +739,12 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             if not r.simulated_set:     # the diff is then the whole measured pose
                 r.warnings = [unset_warning(frame)]
             stage = "tool"
-            tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool)
+            tcp = en.tcp if en.tool is None else _tool_tcp(cache, en.tool, r.warnings)
             if en.tcp_tool is not None:     # where the solved TCP will go: a robot-held tool
                 r.tool_tcp = _solved_tcp_tool(cache, en.tcp_tool).pose.t
             stage = "measurement"
             if en.sources is None:
-                meas = cache.measurement(en.measurement)
+                meas = cache.measurement(en.measurement, en.reading)
             else:
                 meas, paired = cache.paired(en.sources)
                 r.warnings = list(paired) + r.warnings    # the cache's list stays as it is
@@ -714,6 +782,11 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
         if isinstance(sol, UcsioError):
             r.error, r.stage = str(sol), "solve"
             continue
+        if not sol.accepted:
+            mistake = _named_mistake(r.entry, read[k], sol, sigma_laser, sigma_robot)
+            if mistake is not None:         # a unit or order mistake: not "measure again"
+                r.error, r.stage = str(mistake), "measurement"
+                continue
         if read[k][0] is not None:
             sol.tcp = tuple(float(v) for v in read[k][0])
         sol.tool = r.entry.tool
@@ -754,6 +827,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
 
     if patch_dir is not None:
         write_patches(results, frames, cache, patch_dir, manifest)
+        write_programs(results, frames)
     t5 = time.perf_counter()
     summary = summarize(results)
     return BatchResult(manifest=manifest, entries=results, summary=summary,
@@ -881,12 +955,14 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
             problem = str(exc)
         except OSError as exc:
             problem = f"cannot write {target}: {exc.strerror or exc}"
-        for r, what, _ in items:
+        for r, what, name in items:
             if problem is None:
                 if what == "frame":
                     r.patched = str(target)
-                    # a FANUC listing's copy is for review: the controller
-                    # does not load .va files (patch says so too)
+                    # a listing's copy is for review (FANUC: the controller does
+                    # not load .va files): a program sets the frame instead
+                    r.listing = any(patcher.LISTING_WARNING in pr.warnings for pr in planned
+                                    if pr.frame.name.casefold() == name.casefold())
                     r.warnings += [w for pr in planned for w in pr.warnings
                                    if w == patcher.LISTING_WARNING and w not in r.warnings]
                 else:
@@ -901,6 +977,37 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                 r.patch_error = why
             elif why not in r.patch_error:      # its frame's file and its tool's file
                 r.patch_error += f"; {why}"
+
+
+def write_programs(results: list[EntryResult], frames: dict) -> None:
+    """Beside each listing's reviewed copy, the program that sets its frame,
+    as ``ucsio program`` writes it, where the frame's vendor writes one
+    (``review.program.program_writer``); its register from the entry's
+    ``pr`` or ``posreg``, else the posreg.va beside the listing. A failure
+    is the entry's ``program_error``; the listing's copy stays for review."""
+    from ..review.patch import LISTING_WARNING
+    from ..review.program import program_writer
+
+    for k, r in enumerate(results):
+        frame = frames[k][1] if k in frames else None
+        writer = program_writer(frame.vendor) if frame is not None else None
+        if not (r.listing and writer):
+            continue
+        try:
+            made = writer(r.measured, frame, os.path.dirname(r.patched), pr=r.entry.pr,
+                          posreg=r.entry.posreg)
+        except UcsioError as exc:
+            r.program_error = str(exc)
+            continue
+        except OSError as exc:
+            r.program_error = f"program not written: {exc.strerror or exc}"
+            continue
+        r.program = {k: v for k, v in made.as_dict().items() if k != "text"}
+        r.warnings = [w for w in r.warnings if w != LISTING_WARNING] + [
+            f"the controller does not load .va files: the patched copy of "
+            f"{os.path.basename(frame.file)} is for review; {os.path.basename(made.written)} "
+            f"beside it sets {frame.name} through PR[{made.pr}] (load it, read it, run it once "
+            "in T1)"]
 
 
 def _verify_combined(cf, new: bytes, planned) -> None:
@@ -977,6 +1084,11 @@ def summarize(results: Sequence[EntryResult]) -> dict[str, Any]:
         "std_e": float(np.std(es_all, ddof=1)) if len(es_all) >= 2 else None,
         "correlation": corr,
         "patched": sum(r.patched is not None for r in results),
+        "programs": sum(r.program is not None for r in results),
+        "listings": sum(r.listing for r in results),
+        # files the controller loads: patched copies that are not listings, and programs
+        "corrected": sum(r.patched is not None and not r.listing for r in results)
+        + sum(r.program is not None for r in results),
         "tools_patched": sum(r.tool_patched is not None for r in results),
         "patch_errors": sum(r.patch_error is not None for r in results),
         "std_convention": "sample (n-1); null below 2 entries",
@@ -991,7 +1103,27 @@ CSV_COLUMNS = ("name", "status", "accepted", "pass", "e", "dt_mean", "group", "d
                "angle_std", "sigma", "tolerance", "measurement", "controller", "frame", "error",
                "patched", "patch_error", "reason", "station", "points_count", "points_max",
                "points_mean", "points_worst", "worst_point", "worst_at_95", "consistency_ratio",
-               "consistency_p")
+               "consistency_p", "tcp_x", "tcp_y", "tcp_z", "tcp_solved", "tcp_std_x",
+               "tcp_std_y", "tcp_std_z", "tcp_at_95", "tool_tcp_distance", "written", "program",
+               "program_error")
+
+
+def _tcp_columns(r: EntryResult) -> dict[str, Any]:
+    """The TCP the entry used (given, read from a tool, or solved with the
+    frame: then its std and 95 %, and how far it lies from the named tool's)."""
+    s = r.solution
+    tcp = getattr(s, "tcp", None)
+    if s is None or r.error is not None or tcp is None:     # any value may be missing
+        return {}
+    row: dict[str, Any] = dict(zip(("tcp_x", "tcp_y", "tcp_z"), tcp))
+    solved = getattr(s, "tcp_solved", None)
+    row["tcp_solved"] = bool(solved)
+    if solved:
+        row.update({f"tcp_std_{k}": solved["std"][k] for k in "xyz"})
+        row["tcp_at_95"] = solved.get("at_95")
+        if r.tool_tcp is not None:
+            row["tool_tcp_distance"] = r.tool_tcp_dict().get("distance")
+    return row
 
 
 def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
@@ -1026,6 +1158,10 @@ def csv_rows(results: Sequence[EntryResult]) -> list[list[Any]]:
             if cons:
                 row.update({"consistency_ratio": cons.get("ratio"),
                             "consistency_p": cons.get("p")})
+        row.update(_tcp_columns(r))
+        row.update({"written": "; ".join(r.written),
+                    "program": (r.program or {}).get("file"),
+                    "program_error": r.program_error or ""})
         rows.append([row.get(c) for c in CSV_COLUMNS])
     return rows
 

@@ -9,7 +9,9 @@ matplotlib, no scripts, nothing fetched from the network). Read top down:
    every patched copy that was not written, each with its reason in plain
    words and what to do next (or a green line saying nothing does);
 3. the summary cards, the roll-up per station (an entry's ``station``, else
-   its controller's folder) and the five groups of SPEC's Table 4;
+   its controller's folder), the five groups of dt_mean (the grouping of
+   the study ucsio's method follows, ``GROUPS_SOURCE``) and the noise check,
+   said once with the count of entries it concerns;
 4. the charts, each with a legend and labelled axes: dt_mean per entry on
    an axis where every group is equally wide, and each entry's measurement
    error e against the outlier threshold, on a log axis so that passing bars,
@@ -42,6 +44,7 @@ import os
 from typing import Any, Sequence
 
 from .. import defaults
+from ..method.noise import P_WARN
 from ..output import fmt
 from ..review.diff import GROUP_BOUNDS
 
@@ -86,6 +89,7 @@ h2 { font-size: 17px; margin: 26px 0 10px; border-bottom: 1px solid var(--line);
 .card .k { color: var(--muted); font-size: 12px; }
 .card.ok .v { color: #2e7d32; } .card.warn .v { color: #b26a00; }
 .card.bad .v { color: #c62828; } .card.err .v { color: #6a1b9a; }
+.card.info .v { color: #455a64; }
 table { border-collapse: collapse; font-variant-numeric: tabular-nums; }
 th, td { padding: 3px 10px; border-bottom: 1px solid var(--line); text-align: left;
          vertical-align: top; }
@@ -101,6 +105,7 @@ td.n, th.n { text-align: right; }
 .pill { display: inline-block; padding: 0 8px; border-radius: 9px; font-size: 12px; color: #fff; }
 .pill.ok { background: #2e7d32; } .pill.warn { background: #b26a00; }
 .pill.bad { background: #c62828; } .pill.err { background: #6a1b9a; }
+.pill.info { background: #455a64; }
 figure.chart { background: var(--panel); border: 1px solid var(--line); border-radius: 6px;
                padding: 8px; margin: 0; }
 figure.chart svg { display: block; width: 100%; height: auto; }
@@ -179,6 +184,48 @@ def _group_axis(dt: float, top: float) -> float:
             return k + min(max((dt - lo) / (hi - lo), 0.0), 1.0)
     return float(len(edges) - 1)
 
+
+#: Where the five groups of dt_mean come from (SPEC's "Diff"): the report
+#: shows them itself, so it cites the study, not a table of it.
+GROUPS_SOURCE = ("The five groups of dt_mean (below 10, 25, 50 and 100 mm, and from 100 mm on) "
+                 "are the grouping of the published study ucsio's method follows (its Table 4); "
+                 "this run's accepted entries are counted in them here.")
+
+
+def _p(value) -> str:
+    v = _num(value)
+    return "–" if v is None else f"{v:.1g}"
+
+
+def _noise_check(entries: list) -> str:
+    """The noise check's explanation once, with how many entries it concerns
+    (each entry's details keep only its own numbers)."""
+    noisy = [e for e in entries if _dict(e.get("consistency")).get("message")
+             and e.get("status") != "error"]
+    if not noisy:
+        return ""
+    names = ", ".join(str(e.get("name")) for e in noisy[:8]) + \
+        (f" and {len(noisy) - 8} more" if len(noisy) > 8 else "")
+    return ('<p class="note warning" id="noise-check" '
+            f'data-count="{len(noisy)}">Noise check: {len(noisy)} of {len(entries)} '
+            f'entr{"y" if len(entries) == 1 else "ies"} ({_e(names)}) have residuals far above '
+            "the stated noise √(σ_laser² + σ_robot²): residuals that large would happen with "
+            f"p below {P_WARN:g} if the stated noise were right (χ²). The tracker, the robot or the "
+            "stated σ (--sigma-laser, --sigma-robot) is off. Their precision uses the "
+            "residuals' σ; each entry's details give its numbers.</p>")
+
+
+def _correlation(c: dict) -> str:
+    """The Pearson line, folded away with what it shows: near 1 whenever the
+    frames lie metres apart, whatever their errors."""
+    return ('<details class="note" id="correlation-details"><summary>Correlation of simulated '
+            'and measured positions</summary><p class="note" id="correlation" '
+            + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
+            + ">Pearson correlation of the simulated and the measured frame positions over "
+              "passing entries: " + ", ".join(f"{k} {_f(c.get(k), 5)}" for k in "xyz")
+            + ". Where the frames lie metres apart across the cells, it is near 1 whatever "
+              "their errors: it shows that each measured frame is the simulated one moved, "
+              "not how far. How far is dt_mean, above.</p></details>")
 
 def histogram_svg(dts: Sequence[tuple[float, int]], bins_per_group: int = 5,
                   tolerance: float | None = None) -> str:
@@ -676,9 +723,14 @@ def render_report(data: dict, title: str = "ucsio batch report",
     patching = bool(sm.get("patched") or sm.get("patch_errors")) or any(
         "patched" in e or "patch_error" in e for e in entries)
     if patching:
-        cards += [("patched copies", _f(sm.get("patched")), "ok", "patched",
-                   "corrected files written"),
-                  ("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors",
+        listings = _num(sm.get("listings")) or 0
+        corrected = sm.get("corrected", sm.get("patched"))     # an older JSON: its copies
+        cards += [("corrected files", _f(corrected), "ok", "corrected",
+                   "written for the controller to load")]
+        if listings:
+            cards += [("listings for review", _f(listings), "info", "listings",
+                       "copies the controller does not load")]
+        cards += [("patch errors", _f(sm.get("patch_errors")), "err", "patch_errors",
                    "corrected files not written")]
     parts.append('<div class="cards" id="summary">')
     for label, value, cls, key, words in cards:
@@ -698,7 +750,8 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append("<h2>By station</h2>")
     parts.append(_stations(entries))
 
-    parts.append("<h2>Groups (Table 4)</h2>")
+    parts.append("<h2>Groups by dt_mean</h2>")
+    parts.append(f'<p class="note" id="groups-source">{_e(GROUPS_SOURCE)}</p>')
     parts.append('<table id="groups"><tr><th>group</th><th>dt_mean<small>average shift, mm'
                  '</small></th><th>meaning</th><th class="n">count</th>'
                  '<th class="n">% of total</th><th class="n">mean e<small>measurement error, mm'
@@ -720,14 +773,10 @@ def render_report(data: dict, title: str = "ucsio batch report",
             f'<td class="n">{_f(g.get("percent"), 1)}</td>'
             f'<td class="n">{_f(g.get("mean_e"))}</td><td class="n">{_f(g.get("std_e"))}</td></tr>')
     parts.append("</table>")
-    c = _dict(sm.get("correlation"))
-    parts.append('<p class="note" id="correlation" '
-                 + " ".join(f'data-{k}="{_attr(c.get(k))}"' for k in "xyz")
-                 + ">How well the simulated positions predict the measured ones over passing "
-                   "entries (Pearson correlation, 1 = perfectly): "
-                 + ", ".join(f"{k} {_f(c.get(k), 5)}" for k in "xyz")
-                 + ". Counts by group are over accepted entries; std e is the sample standard "
-                   "deviation (n − 1), blank below two entries.</p>")
+    parts.append('<p class="note">Counts by group are over accepted entries; std e is the '
+                 "sample standard deviation (n − 1), blank below two entries.</p>")
+    parts.append(_noise_check(entries))
+    parts.append(_correlation(_dict(sm.get("correlation"))))
 
     tolerances = {_num(e.get("tolerance")) for e in entries} - {None}
     tol = tolerances.pop() if len(tolerances) == 1 else None
@@ -913,23 +962,48 @@ def _reason(e: dict) -> str:
     return "the dataset was rejected"
 
 
+#: What --patch-dir wrote for an entry (EntryResult.written), as a pill.
+WRITTEN_PILLS = {
+    "patched": ("ok", "the corrected controller file"),
+    "program written": ("ok", "a program that sets the frame, for the controller to load"),
+    "listing for review": ("info", "a copy the controller does not load: for review only"),
+}
+
+
 def _patch_pill(e: dict) -> str:
     if e.get("patch_error"):
         return ' <span class="pill err" title="patched copy not written">not patched</span>'
-    if e.get("patched"):
-        return ' <span class="pill ok">patched</span>'
-    return ""
+    written = e.get("written")
+    if not isinstance(written, list):       # an older JSON: a patched copy, nothing more said
+        written = ["patched"] if e.get("patched") else []
+    return "".join(f' <span class="pill {WRITTEN_PILLS[w][0]}" title="{WRITTEN_PILLS[w][1]}">'
+                   f'{_e(w)}</span>' for w in written if w in WRITTEN_PILLS)
 
 
-def _pose_rows(label: str, p: Any) -> str:
+def _pose_rows(label: str, p: Any, keys: str = "abc") -> str:
+    """A pose's row; ``keys``: its a/b/c in the order of the vendor's angle names."""
     if not isinstance(p, dict) or not p:
         return ""
     q = p.get("q")
     qs = ("[" + ", ".join(_f(v, 6) for v in q) + "]") if isinstance(q, (list, tuple)) else "\u2013"
     return (f"<tr><th>{label}</th><td class='n'>{_f(p.get('x'))}</td>"
             f"<td class='n'>{_f(p.get('y'))}</td><td class='n'>{_f(p.get('z'))}</td>"
-            f"<td class='n'>{_f(p.get('a'), 4)}</td><td class='n'>{_f(p.get('b'), 4)}</td>"
-            f"<td class='n'>{_f(p.get('c'), 4)}</td><td class='mono'>{qs}</td></tr>")
+            + "".join(f"<td class='n'>{_f(p.get(k), 4)}</td>" for k in keys)
+            + f"<td class='mono'>{qs}</td></tr>")
+
+
+def _delta_cells(d: dict, sim: Any, mea: Any, keys: str) -> str:
+    """The Δ row's numbers: the difference of the two rows as shown (so it
+    adds up), where both are there; else the diff's own."""
+    from ..output import shown_difference
+
+    def cell(k: str, digits: int) -> str:
+        s, m = (_num(sim.get(k)) if isinstance(sim, dict) else None,
+                _num(mea.get(k)) if isinstance(mea, dict) else None)
+        if s is None or m is None:
+            return f"<td class='n'>{_f(d.get('d' + k), digits)}</td>"
+        return f"<td class='n'>{_f(shown_difference(m, s, digits, wrap=k in 'abc'), digits)}</td>"
+    return "".join(cell(k, 3) for k in "xyz") + "".join(cell(k, 4) for k in keys)
 
 
 def _detail(i: int, e: dict, base: str | None = None) -> str:
@@ -951,19 +1025,19 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
     for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
         body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
     if e.get("simulated") or e.get("frame"):
-        rows = _pose_rows("simulated", e.get("simulated")) + _pose_rows(
-            "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"))
+        from ..geometry.frames import angle_columns
+        cols = angle_columns(e.get("vendor"))       # the vendor's own names (FANUC w p r, ...)
+        rows = _pose_rows("simulated", e.get("simulated"), cols.keys) + _pose_rows(
+            "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"), cols.keys)
         d = e.get("diff")
         if isinstance(d, dict) and d:
-            rows += (f"<tr><th>Δ</th><td class='n'>{_f(d.get('dx'))}</td>"
-                     f"<td class='n'>{_f(d.get('dy'))}</td><td class='n'>{_f(d.get('dz'))}</td>"
-                     f"<td class='n'>{_f(d.get('da'), 4)}</td><td class='n'>{_f(d.get('db'), 4)}</td>"
-                     f"<td class='n'>{_f(d.get('dc'), 4)}</td>"
+            rows += (f"<tr><th>Δ</th>{_delta_cells(d, e.get('simulated'), e.get('frame'), cols.keys)}"
                      f"<td>angle {_f(d.get('angle'), 4)}°, dist {_f(d.get('dist'))} mm, dt_mean "
                      f"{_f(d.get('dt_mean'))} mm ({DT_WORDS}), group {_f(d.get('group'))}</td></tr>")
         body.append("<table><tr><th></th><th class='n'>x mm</th><th class='n'>y mm</th>"
-                    "<th class='n'>z mm</th><th class='n'>a °</th><th class='n'>b °</th>"
-                    "<th class='n'>c °</th><th>q</th></tr>" + rows + "</table>")
+                    "<th class='n'>z mm</th>"
+                    + "".join(f"<th class='n'>{name} °</th>" for name in cols.names)
+                    + "<th>q</th></tr>" + rows + "</table>")
     pts = [p for p in (e.get("points") or []) if isinstance(p, dict)]
     if pts:
         prow = "".join(
@@ -1002,10 +1076,13 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
                     'mm per axis.</p>')
     if _dict(e.get("worst")) and status != "error":
         body.append(_working(e))
-    msg = _dict(e.get("consistency")).get("message")
-    if msg and status != "error":
+    noise = _dict(e.get("consistency"))
+    if noise.get("message") and status != "error":     # the explanation is said once, above
         body.append(f'<p class="note warning noise-check" style="flex-basis:100%">noise check: '
-                    f'{_e(msg)}</p>')
+                    f'the residuals show {_f(noise.get("sigma_residual"), 3)} mm of noise per '
+                    f'axis, {_f(noise.get("ratio"), 1)} times the stated '
+                    f'{_f(noise.get("sigma_stated"), 3)} mm (p = {_p(noise.get("p"))}); see '
+                    '<a href="#noise-check">the noise check</a>.</p>')
     pm = _dict(e.get("points_moved"))
     if pm:
         if pm.get("count"):
@@ -1030,8 +1107,17 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
         src = f"measurement <code>{_e(e.get('measurement'))}</code>"
     src += f"; controller <code>{_e(e.get('controller'))}</code>"
     if e.get("patched"):
-        src += (f'; patched copy <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
+        what = "listing for review" if e.get("listing") else "patched copy"
+        src += (f'; {what} <a class="patched" href="{_e(_href(str(e["patched"]), base))}">'
                 f'{_e(e["patched"])}</a>')
+    program = _dict(e.get("program"))
+    if program.get("file"):
+        src += (f'; program written <a class="program" href="{_e(_href(str(program["file"]), base))}">'
+                f'{_e(program["file"])}</a> (sets {_e(program.get("frame"))} through '
+                f'PR[{_e(program.get("pr"))}])')
+    elif e.get("program_error"):
+        src += f'; no program written: {_e(e["program_error"])}'
+
     body.append(f'<p class="note" style="flex-basis:100%">{src}</p>')
     return head + "".join(body) + "</div></details>"
 

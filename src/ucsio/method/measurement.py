@@ -60,6 +60,14 @@ NEAR_MISS_CUTOFF = 0.8
 #: external axes, deviations and tracker statistics.
 EXTRA_OK = re.compile(r"robot_(s|t|status|turn|e\d+|a\d+|j\d+|axis_?\d+|cf[146x]|cfg|conf\w*|"
                       r"eax\w*|ext\w*)|(laser|robot)_(d[xyz]|dist|rms|sigma|std|err\w*|unc\w*)")
+#: Orientation columns in other vendors' or tools' names (``robot_rx``,
+#: ``robot_yaw``, ``robot_qw``): the answer is the forms ucsio reads, not
+#: the nearest spelling (``robot_rx`` is one letter from ``robot_x``).
+OTHER_ORIENTATION = re.compile(r"robot_(r[xyz]|rot_?[xyz]|roll|pitch|yaw|q[wxyz]|quat\w*|"
+                               r"euler\w*|orient\w*|[abcwpr]_?deg)")
+ORIENTATION_FORMS = ("robot_a, robot_b, robot_c (KUKA A, B, C, deg); robot_q1 .. robot_q4 "
+                     "(ABB quaternion, q1 the real part); or robot_w, robot_p, robot_r (FANUC "
+                     "W, P, R, deg; also Yaskawa's Rx, Ry, Rz, the same R = Rz·Ry·Rx)")
 #: Excel's separator hint, the first line of a file: ``sep=;``.
 SEP_HINT = re.compile(r'\s*"?sep=(.)"?\s*', re.IGNORECASE)
 SEPARATORS = (",", ";", "\t", "|")
@@ -68,6 +76,28 @@ SEPARATORS = (",", ";", "\t", "|")
 #: unit norm is a typo or a wrong column, not rounding.
 QUAT_NORM_TOLERANCE = 1e-3
 SIDES = ("laser", "robot")
+#: How a CSV's numbers are written where the file cannot say: ``--laser-units``
+#: (readers.laser.UNITS), ``--angle-units`` for robot_a/b/c and robot_w/p/r,
+#: ``--quaternion-order`` for robot_q1..q4 (SPEC's order is q1 the real part).
+ANGLE_UNITS = ("deg", "rad")
+QUATERNION_ORDERS = ("wxyz", "xyzw")
+
+
+def check_reading(angle_units: str = "deg", quaternion_order: str = "wxyz") -> None:
+    """The two spellings options, from the command line, the API or a manifest."""
+    if angle_units not in ANGLE_UNITS:
+        raise UcsioError(f"--angle-units {angle_units!r}: expected deg or rad")
+    if quaternion_order not in QUATERNION_ORDERS:
+        raise UcsioError(f"--quaternion-order {quaternion_order!r}: expected wxyz or xyzw")
+
+
+def spec_orientation(form: str, orientation: np.ndarray, angle_units: str = "deg",
+               quaternion_order: str = "wxyz") -> np.ndarray:
+    """The orientation columns as written -> SPEC's reading: degrees, and
+    quaternions with the real part first."""
+    if form == "abb":
+        return orientation[:, [3, 0, 1, 2]] if quaternion_order == "xyzw" else orientation
+    return np.degrees(orientation) if angle_units == "rad" else orientation
 
 
 @dataclass
@@ -82,7 +112,7 @@ class Measurement:
     flange: np.ndarray       # (n, 4, 4) flange pose in robot world (None: a laser-side file)
     weights: np.ndarray      # (n,)
     form: str                # 'kuka' | 'abb' | 'fanuc'
-    orientation: np.ndarray  # (n, 3) or (n, 4) as written
+    orientation: np.ndarray  # (n, 3) or (n, 4) as written ((n, 0): not from a CSV)
 
     def __len__(self) -> int:
         return len(self.names)
@@ -136,17 +166,24 @@ def _split(line: str, sep: str) -> list[tuple[str, int]]:
 
 
 def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
-                     what: str = "measurement file") -> Measurement:
+                     what: str = "measurement file", **reading) -> Measurement:
     """Read a measurement CSV; UcsioError (exit 2) on anything wrong.
     ``sides``: the columns required, ``("laser",)`` or ``("robot",)`` for one
     side of a measurement (``solve --laser/--robot``); the other side's
-    columns are then not needed (and its array is None)."""
+    columns are then not needed (and its array is None). ``reading``:
+    ``laser_units``, ``angle_units``, ``quaternion_order``."""
     path = os.fspath(path)
-    return parse_measurement(read_text(path, what), path, sides)
+    return parse_measurement(read_text(path, what), path, sides, **reading)
 
 
 def parse_measurement(text: str, path: str = "<measurement>",
-                      sides: tuple[str, ...] = SIDES) -> Measurement:
+                      sides: tuple[str, ...] = SIDES, *, laser_units: str = "mm",
+                      angle_units: str = "deg", quaternion_order: str = "wxyz") -> Measurement:
+    from ..readers.laser import UNITS
+
+    check_reading(angle_units, quaternion_order)
+    if laser_units not in UNITS:
+        raise UcsioError(f"--laser-units {laser_units!r}: expected one of {', '.join(UNITS)}")
     laser_side, robot_side = "laser" in sides, "robot" in sides
     text = text.lstrip("\ufeff")
     header = None
@@ -186,6 +223,9 @@ def parse_measurement(text: str, path: str = "<measurement>",
             if key in columns:
                 raise UcsioError(f"column {key!r} given twice", file=path, line=header_line, col=col)
             columns[key] = idx
+        elif OTHER_ORIENTATION.fullmatch(key):
+            raise UcsioError(f"unknown column {name.strip()!r}: the flange orientation is read "
+                             f"as {ORIENTATION_FORMS}", file=path, line=header_line, col=col)
         elif key and not EXTRA_OK.fullmatch(key):
             close = difflib.get_close_matches(key, sorted(KNOWN), n=1, cutoff=NEAR_MISS_CUTOFF)
             if close:
@@ -264,6 +304,8 @@ def parse_measurement(text: str, path: str = "<measurement>",
         names.append(name)
         lines.append(lineno)
 
+    if laser_side:
+        values[:, 0:3] *= UNITS[laser_units]
     if not robot_side:
         return Measurement(path=path, names=names, lines=lines, laser=values[:, 0:3].copy(),
                            flange=None, weights=weights, form=form, orientation=None)
@@ -278,7 +320,8 @@ def parse_measurement(text: str, path: str = "<measurement>",
             i = int(bad[0])
             raise UcsioError(f"robot_q1..q4 is not a unit quaternion (norm {norms[i]:.6g})",
                              file=path, line=lines[i], col=rows[i][1][columns["robot_q1"]][1])
-    flange = flange_matrices(form, orientation, position)
+    flange = flange_matrices(form, spec_orientation(form, orientation, angle_units, quaternion_order),
+                             position)
     return Measurement(path=path, names=names, lines=lines,
                        laser=None if laser is None else laser.copy(), flange=flange,
                        weights=weights, form=form, orientation=orientation.copy())

@@ -117,8 +117,11 @@ def pair(laser: LaserPoints, robot: RobotPoses, mapping=(), map_path: str | None
         if rp.note:
             notes.setdefault(rp.note, []).append(rp.name)
     warnings.extend(f"{', '.join(names)}: {note}" for note, names in notes.items())
+    written = [robot.poses[partner[i]].written for i in order]
+    orientation = (np.array(written) if all(w is not None for w in written)
+                   else np.empty((len(order), 0)))       # a controller's file: as it says
     meas = Measurement(path=laser.path, names=[laser.names[i] for i in order],
                        lines=[laser.lines[i] for i in order], laser=laser.xyz[order].copy(),
                        flange=np.array(flange, dtype=float), weights=laser.weights[order].copy(),
-                       form=robot.form, orientation=np.empty((len(order), 0)))
+                       form=robot.form, orientation=orientation)
     return meas, warnings

@@ -59,6 +59,7 @@ class RobotPose:
     problem: UcsioError | None = None
     note: str | None = None         # an assumption made, said once paired ("no FDAT ...")
     aliases: tuple[str, ...] = ()   # names it answers to after ``point`` (FANUC's P3 for P[3])
+    written: np.ndarray | None = None   # a CSV's orientation columns as written
 
 
 @dataclass
@@ -71,9 +72,12 @@ class RobotPoses:
 
 
 def read_robot(path: str | os.PathLike, *, config: str | None = None, tool: str = "tool0",
-               wobj: str = "wobj0") -> RobotPoses:
+               wobj: str = "wobj0", angle_units: str = "deg",
+               quaternion_order: str = "wxyz") -> RobotPoses:
     """The robot side, by the file's kind: a KUKA .dat, an ABB module, a
-    FANUC TP program (.ls) or posreg.va, else SPEC's CSV."""
+    FANUC TP program (.ls) or posreg.va, else SPEC's CSV. Only a CSV can be
+    written in radians or with the quaternion's real part last: a
+    controller's own files say how they are written."""
     path = os.fspath(path)
     suffix = Path(path).suffix.lower()
     if suffix in KUKA_SUFFIXES:
@@ -84,7 +88,7 @@ def read_robot(path: str | os.PathLike, *, config: str | None = None, tool: str 
         return fanuc_registers(path, config, tool, wobj)
     if suffix in ABB_SUFFIXES:
         return abb_module(path, tool, wobj, config)
-    return spec_csv(path)
+    return spec_csv(path, angle_units=angle_units, quaternion_order=quaternion_order)
 
 
 def _matrix(pose: Pose) -> np.ndarray:
@@ -96,12 +100,12 @@ def _matrix(pose: Pose) -> np.ndarray:
 
 # ---------------------------------------------------------------- CSV
 
-def spec_csv(path: str) -> RobotPoses:
+def spec_csv(path: str, **reading) -> RobotPoses:
     from ..method.measurement import read_measurement
 
-    m = read_measurement(path, sides=("robot",), what="robot file")
-    poses = [RobotPose(n, n, ln, None, m.flange[i]) for i, (n, ln) in
-             enumerate(zip(m.names, m.lines))]
+    m = read_measurement(path, sides=("robot",), what="robot file", **reading)
+    poses = [RobotPose(n, n, ln, None, m.flange[i], written=m.orientation[i])
+             for i, (n, ln) in enumerate(zip(m.names, m.lines))]
     return RobotPoses(path, "csv", poses, m.form)
 
 

@@ -223,12 +223,13 @@ def _pose_text(d: dict, extra: int = 0) -> str:
     that the written precision would round away)."""
     if d.get("x") is None:
         return "no value"
+    from ..geometry.frames import angle_columns
+
     t, a, q = 3 + extra, 4 + extra, 6 + extra
+    cols = angle_columns(d.get("vendor"))        # the vendor's own names (FANUC w p r, ...)
     s = f"x {d['x']:.{t}f}  y {d['y']:.{t}f}  z {d['z']:.{t}f}  "
-    if d.get("vendor") == "fanuc":       # W, P, R as the controller writes them
-        return s + f"w {d['c']:.{a}f}  p {d['b']:.{a}f}  r {d['a']:.{a}f}"
-    s += f"a {d['a']:.{a}f}  b {d['b']:.{a}f}  c {d['c']:.{a}f}"
-    if d.get("vendor") == "abb" and d.get("q"):
+    s += "  ".join(f"{name} {d[k]:.{a}f}" for name, k in zip(cols.names, cols.keys))
+    if cols.quaternion and d.get("q"):
         s += "  q [" + ", ".join(f"{c:.{q}f}" for c in d["q"]) + "]"
     return s
 
@@ -259,8 +260,10 @@ def change_lines(result: dict[str, Any]) -> list[str]:
         head = f"~ {_named(c)}: {', '.join(c['changes'])} changed"
         lines.append(head)
         if "dx" in c and "value" in c["changes"]:
-            angles = (f"dw {c['dw']:+.4f}  dp {c['dp']:+.4f}  dr {c['dr']:+.4f}" if "dw" in c
-                      else f"da {c['da']:+.4f}  db {c['db']:+.4f}  dc {c['dc']:+.4f}")
+            from ..geometry.frames import angle_columns
+            cols = angle_columns(c.get("vendor"))
+            angles = "  ".join(f"d{name} {c['d' + k]:+.4f}"
+                               for name, k in zip(cols.names, cols.keys))
             lines.append(f"    Δ dx {c['dx']:+.3f}  dy {c['dy']:+.3f}  dz {c['dz']:+.3f} mm  "
                          f"{angles} deg  "
                          f"angle {c['angle']:.4f} deg  dist {c['dist']:.3f} mm  "

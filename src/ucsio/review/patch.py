@@ -670,8 +670,26 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
         for f in other.frames:
             if f.name.casefold() == key and f.type == frame.type:
                 same = poses_equal(frame.pose, f.pose)
-                found.append({"file": p, "line": f.line, "same_value": same})
+                found.append({"file": p, "line": f.line, "same_value": same,
+                              "copy": _same_module(f, frame)})
     return found
+
+
+def _same_module(a: Frame, b: Frame) -> bool:
+    """Both in a MODULE of one name: one file is a copy of the other (a
+    patched copy, a backup), never a module the controller loads beside it."""
+    name = str(a.info.get("module") or "")
+    return bool(name) and name.casefold() == str(b.info.get("module") or "").casefold()
+
+
+def copies_message(frame: Frame, copies: list[dict]) -> str:
+    """The refusal where the other declarations are copies of the module."""
+    names = ", ".join(os.path.basename(s["file"]) for s in copies)
+    here = os.path.basename(frame.file)
+    return (f"{frame.name}: {names} declare{'s' if len(copies) == 1 else ''} MODULE "
+            f"{frame.info.get('module')} too: a copy of {here} (a patched copy or a backup), "
+            "not a module the controller loads beside it; move the copy out of this folder "
+            f"(write patched copies elsewhere: -o OTHER_FOLDER/{here})")
 
 
 def _may_declare(path: str, name: str) -> bool:
@@ -952,6 +970,13 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
                 warnings.append(f"{frame.name}: {why} (written anyway: --force)")
     if check_siblings:
         shared = shared_declarations(frame, warnings, load=load)
+        copies = [s for s in shared if s["copy"]]
+        if copies and not force:
+            raise UcsioError(copies_message(frame, copies) + "; --force patches this file only",
+                             **where)
+        if copies:
+            warnings.append(copies_message(frame, copies) + " (patched this file only: --force)")
+        shared = [s for s in shared if not s["copy"]]
         if shared:
             names = "; ".join(f"{os.path.basename(s['file'])}:{s['line']} "
                               f"({'same value' if s['same_value'] else 'different value'})"

@@ -265,3 +265,48 @@ def save(result: ProgramResult, path: str) -> str:
     written, _ = atomic_write(target, result.data)
     result.written = written
     return written
+
+
+def posreg_beside(path: str) -> str | None:
+    """A posreg.va (any case) in the folder of ``path``: where a backup keeps
+    the registers a program may take one of."""
+    folder = os.path.dirname(os.path.abspath(path))
+    try:
+        names = sorted(n for n in os.listdir(folder) if n.casefold() == "posreg.va")
+    except OSError:
+        return None
+    return os.path.join(folder, names[0]) if names else None
+
+
+def write_beside(pose: Pose, frame, folder: str, *, pr: int | None = None,
+                 posreg: str | None = None) -> ProgramResult:
+    """The program that sets ``frame`` (a frame of a listing) to ``pose``,
+    written into ``folder`` as SET_UF1.LS (the program's name): what ``batch
+    --patch-dir`` writes beside the listing's reviewed copy. The register:
+    ``pr``, else an unused one of ``posreg`` (default: the posreg.va beside
+    the listing). The frame's comment is kept where the pendant can hold it."""
+    try:
+        comment = check_comment(frame.label)
+    except UcsioError:
+        comment = None
+    if pr is None and posreg is None:
+        posreg = posreg_beside(frame.file)
+        if posreg is None:
+            raise UcsioError(f"{frame.name}: no TP program written: no posreg.va beside "
+                             f"{os.path.basename(frame.file)} to take an unused register from; "
+                             "give pr = N or posreg = \"FILE\" in the entry")
+    result = program(pose, frame.name, pr=pr, posreg=posreg, comment=comment)
+    save(result, os.path.join(folder, f"{result.name}.LS"))
+    return result
+
+
+#: The vendors whose frames reach the controller through a program ucsio
+#: writes, the listing's patched copy being for review only (FANUC: the
+#: controller does not load .va files): how each writes it beside the copy.
+PROGRAM_WRITERS = {"fanuc": write_beside}
+
+
+def program_writer(vendor: str | None):
+    """``write_beside`` for a vendor whose listings the controller does not
+    load, else None (its patched copy is the file the controller loads)."""
+    return PROGRAM_WRITERS.get(vendor or "")

@@ -65,6 +65,14 @@ def as_dict(frame, cf=None) -> dict[str, Any]:
     return d
 
 
+def tool_warning(frame, what: str = "--tool", zero: str = "--tcp 0,0,0") -> str:
+    """What solve and batch say about a TCP taken from an unset tool
+    (``zero``: how the user says the points are flange positions)."""
+    return (f"{what}: {frame.name} is unset (all six values 0 and no name: the controller's "
+            "default, not a tool anyone taught): its TCP 0,0,0 takes the points as flange "
+            f"positions; name the reflector's tool, or say so with {zero}")
+
+
 def warning(frame) -> str:
     """What diff, batch and the report say about an unset simulated frame."""
     return (f"{frame.name} is unset (all six values 0 and no name: the controller's default, "

@@ -122,6 +122,7 @@ class _Module:
         self.brackets: list[rapid.Region] = []              # MODULE ..., ENDMODULE
         self.targets: list[tuple[str, rapid.Region]] = []   # robtarget declarations, by name
         self.parsed: set[str] = set()   # names whose declarations are in ``decls``
+        self.name = ""                  # MODULE name
 
     def parse_targets(self, names: set[str]) -> None:
         """Parse the robtarget declarations called one of ``names`` (casefolded),
@@ -158,6 +159,9 @@ def _read_module(doc: Document) -> _Module:
     for r in regions:
         if r.kind in ("module", "endmodule"):
             mod.brackets.append(r)
+            head = _MODULE_NAME.match(text, r.span.start, r.span.end)
+            if r.kind == "module" and head:
+                mod.name = head.group(1)
             continue
         if r.kind not in ("decls", "routine"):
             continue
@@ -273,6 +277,28 @@ def _target(value) -> tuple[tuple[float, float, float], tuple] | None:
     return tuple(c.value for c in t), quat
 
 
+_MODULE_NAME = regex.lazy(r"\s*MODULE\s+(\w+)", re.IGNORECASE)
+
+
+def _drop_copies(modules: list, frame: Frame, found: Found) -> None:
+    """A module of the folder that has the frame's own MODULE name is a copy
+    of its file (a patched copy, a backup): the controller never loads both,
+    so its points are not counted twice."""
+    own = str(frame.info.get("module") or "").casefold()
+    copies = [m for m in modules if own and m.name.casefold() == own
+              and not _same_path(m.doc.path, frame.file)]
+    for m in copies:
+        modules.remove(m)
+        found.warnings.append(f"{m.doc.path} declares MODULE {m.name} too: a copy of "
+                              f"{frame.file} (a patched copy or a backup), not a module loaded "
+                              "beside it; its points are not counted (move the copy out of this "
+                              "folder)")
+
+
+def _same_path(a: str, b: str) -> bool:
+    return os.path.normcase(os.path.abspath(a)) == os.path.normcase(os.path.abspath(b))
+
+
 def _module(src, cf: ControllerFile, cache: dict | None) -> _Module:
     """A module of the folder, read once per run where ``cache`` is given."""
     key = ("abb", src.name)
@@ -306,6 +332,7 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
         except UcsioError as exc:
             found.warnings.append(f"could not read {src.name if src else cf.path} ({exc}); "
                                   "its points are not counted")
+    _drop_copies(modules, frame, found)
     wanted = {str(tok).casefold() for mod in modules for tree, _ in mod.statements
               if tree is not None for tok in _names_moved_to(tree, wobj)}
     for mod in list(modules):
