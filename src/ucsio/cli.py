@@ -7,7 +7,6 @@ never pays for scipy.
 from __future__ import annotations
 
 import os
-import re
 import sys
 
 from .parsing import regex
