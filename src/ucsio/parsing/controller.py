@@ -166,6 +166,7 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
     ``beside``: the files beside the document's path are its backup's (a
     FANUC sysframe.va takes its frames' comments from them); False for a
     file that stands alone (git's textconv hands over a temporary copy)."""
+    _refuse_foreign(doc, beside)
     if looks_binary(doc.raw):
         from .fanuc import BINARY_SUFFIXES
         if os.path.splitext(doc.path)[1].lower() in BINARY_SUFFIXES:
@@ -185,6 +186,22 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
             return fanuc.parse(doc, full=full, beside=beside)
         from . import krl
         return krl.parse(doc, full=full)
+
+
+def _refuse_foreign(doc: Document, beside: bool) -> None:
+    """A file ucsio recognises and does not read (another controller's, a
+    FANUC backup's .DAT: parsing.foreign) is refused with what it is."""
+    from . import foreign
+    why = foreign.other_vendor(doc.path, doc.text[:512])
+    if why is None and beside and doc.path.lower().endswith(".dat"):
+        why = foreign.fanuc_data(doc.path, doc.text[:4096], foreign.beside(doc.path))
+    if why is not None:
+        raise Unsupported(why, file=doc.path)
+
+
+class Unsupported(UcsioError):
+    """A file ucsio recognises and does not read: named on its own it is an
+    error; in a folder or an archive it is listed as not read."""
 
 
 def load(path: str | os.PathLike, full: bool = False) -> ControllerFile:
