@@ -62,8 +62,9 @@ _FIRST = regex.lazy(r"[^\s]")
 # in "\n" + text; group 1 the INDEX)
 _ELEMENT = regex.lazy(r"\n[ \t\f\r]*(\[[0-9 ,]*\])[ \t\f\r]*=")
 # FRAMEVAR.VA: a SETUP_DATA comment that is not empty
+# (its string on the line, or on the next: a long one)
 _COMMENT_FIELD = regex.lazy(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
-                            r"[ \t\f\r]*'[^'\n]")
+                            r"[ \t\f\r]*(?:\n[ \t\f\r]*)?'[^'\n]")
 # a record's type, from its DESC: ... : ARRAY[2,32] OF POSITION
 _ARRAY = regex.lazy(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
 _PATH_INDEX = regex.lazy(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
@@ -86,6 +87,19 @@ def _line_end(text: str, pos: int) -> int:
     return len(text) if end < 0 else end
 
 
+def _kept_end(text: str, pos: int) -> int:
+    """Where the line at ``pos`` ends, or the line its last string ends on
+    where that string runs over the line end (a listing's strings hold no
+    quote: an odd count leaves one open)."""
+    end = _line_end(text, pos)
+    while text.count("'", pos, end) % 2:
+        close = text.find("'", end)
+        if close < 0:
+            return len(text)
+        pos, end = close + 1, _line_end(text, close)
+    return end
+
+
 def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
     """The spans the fast path keeps: every record's head line, the file's
     first line, and where ``wanted(name)`` says "record" the whole record
@@ -100,10 +114,10 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
     first = _FIRST.search(text)
     if first is not None:
         s = text.rfind("\n", 0, first.start()) + 1
-        spans.append((s, _line_end(text, s)))
+        spans.append((s, _kept_end(text, s)))
     nl = "\n" + text           # the line patterns start with the "\n" before a line
     for start, name, end in _records(nl):
-        head_end = _line_end(text, start)
+        head_end = _kept_end(text, start)
         how = wanted(name)
         if how == "record":
             spans += _record_spans(text, nl, start, end, seen, shared)
@@ -112,7 +126,7 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
             if how == "comments":
                 for m in _COMMENT_FIELD.finditer(nl, head_end + 1, end + 1):
                     s = m.start()           # the "\n" in nl: the line's start in text
-                    spans.append((s, _line_end(text, s)))
+                    spans.append((s, _kept_end(text, m.end() - 3)))    # from its quote on
     merged: list[tuple[int, int]] = []
     for s, e in sorted(spans):              # the first line is a record's head, say
         if merged and s <= merged[-1][1]:
