@@ -41,7 +41,7 @@ from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, ShiftedNumbers
 from . import fanuc, regex
 from .controller import ControllerFile
-from .document import Document, Span, lf_lines, masked
+from .document import Document, Span, lf_lines, masked, small_int
 from .lalr import Rejected, Tree
 
 START = ("file",)
@@ -354,23 +354,19 @@ def _type_of(desc: str):
     m = _ARRAY.search(typ)
     if m is None:
         return None, typ
-    try:
-        dims = tuple(int(d) for d in m.group(1).split(","))
-    except ValueError:
-        dims = ()
-    return dims, m.group(2).strip()
+    dims = tuple(small_int(d) if d.strip() else None for d in m.group(1).split(","))
+    return (() if None in dims else dims), m.group(2).strip()
 
 
 def _index(text: str):
     """[1,2] -> (1, 2); None for anything else."""
     parts = text[1:-1].split(",")
+    if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
+        return None         # a 10-digit index: not a frame's (and no huge int() below)
     try:
-        got = tuple(map(int, parts))
+        return tuple(map(int, parts))
     except ValueError:
         return None
-    if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
-        return None         # a 10-digit index: not a frame's
-    return got
 
 
 def _moved(numbers: dict, delta: int):
@@ -530,8 +526,8 @@ def comments_of(recs: list[Record]) -> dict:
             m = _PATH_INDEX.search(member.key) if member.kind == "field" else None
             if m is None or e.comment is None or not e.comment.strip():
                 continue
-            g, k, n = (int(x) for x in m.groups())
-            if k in SETUP_KINDS:
+            g, k, n = map(small_int, m.groups())      # None: beyond 32 bits, no frame's
+            if k in SETUP_KINDS and None not in (g, n):
                 out[(SETUP_KINDS[k], n, g)] = e.comment.strip()
     return out
 
