@@ -169,6 +169,13 @@ def number_values(numbers) -> list[float]:
     return [n.value for n in base.values()]
 
 
+def number_texts(numbers) -> dict[str, str]:
+    """How a frame's numbers are written, by component, without making
+    moved spans."""
+    base = numbers.base if isinstance(numbers, ShiftedNumbers) else numbers
+    return {k: n.text for k, n in base.items()}
+
+
 class Frame(Value):
     __slots__ = ("name", "vendor", "type", "pose", "file", "line", "reference", "label",
                  "numbers", "info", "document")

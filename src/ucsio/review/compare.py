@@ -114,10 +114,10 @@ def _written_alike(old: Frame, new: Frame) -> bool:
     """The same numbers written the same way, the same type, reference,
     label and info: nothing can differ (a listing's hundreds of unset
     frames are compared in a blink)."""
-    a, b = old.numbers, new.numbers
+    from ..geometry.frames import number_texts
     return (old.type == new.type and old.reference == new.reference
-            and old.label == new.label and a.keys() == b.keys()
-            and all(a[k].text == b[k].text for k in a) and old.info == new.info)
+            and old.label == new.label and old.info == new.info
+            and number_texts(old.numbers) == number_texts(new.numbers))
 
 
 def _index(frames: list[Frame]) -> dict[str, list[Frame]]:
