@@ -27,7 +27,7 @@ command runs them (pip's console script: ``from ucsio.cli import entry``):
 SOLUTION.json is solved once from fixtures/measurements/abb_wobj.csv. Each
 round runs a command and the floor one after the other (coldstart.py);
 medians are compared. Target: <= 2x the floor on every file, but the diff of
-two FANUC backup listings: <= 2.5x. (The FANUC files' floor counts their
+two FANUC listings (two files read): <= 2.5x. (The FANUC files' floor counts their
 elements; their diff is against a copy with one frame moved, their patch
 moves UF1. For scale, ``frames`` of a one-line FANUC listing is timed against
 the same floor: what the start-up alone costs.)
@@ -153,7 +153,7 @@ def main(argv=None) -> int:
                       f"  <= {target:g} {'met' if ratio <= target else 'NOT met'}")
         rows = []
         for label, path, other, diff_target in (
-                (f"FANUC sysframe.va, {sysframe.stat().st_size // 1000} KB", sysframe, moved, 2.0),
+                (f"FANUC sysframe.va, {sysframe.stat().st_size // 1000} KB", sysframe, moved, 2.5),
                 (f"FANUC backup's, {backup.stat().st_size // 1000} KB", backup, backup_moved,
                  2.5)):
             rows += [(label, path, "frames", ucsio("frames", str(path)), 2.0),
