@@ -43,19 +43,17 @@ def _corpus(vendor: str, *parts: str) -> list:
 
 FILES = [
     *sorted((FIXTURES / "fanuc").glob("*.va")), *sorted((FIXTURES / "fanuc").glob("*.ls")),
-    *_corpus("fanuc", "curpos.dg", "frame.dg", "td_gun1.ls", "tooldata", "akt_pos",
-             "pal1_calc", "move_safe", "surface.ls", "UB10200_RBT01__posreg",
-             "UB10200_RBT01__sysframe", "kjltvr411670r01__SYSFRAME"),
+    *_corpus("fanuc", "curpos.dg", "frame.dg", "td_gun1.ls", "move_safe", "surface.ls",
+             "UB10200_RBT01__posreg", "UB10200_RBT01__sysframe", "kjltvr411670r01__SYSFRAME"),
     *sorted((FIXTURES / "kuka").glob("*.dat")), *_corpus("kuka", "caja_g_m2.dat"),
     *sorted(p for p in (FIXTURES / "abb").glob("*.mod") if p.name != "encrypted.mod"),
-    *_corpus("abb", "modMain.mod"),
     *sorted((FIXTURES / "measurements").glob("*.csv")),
 ]
 
 
 def variants(text: str, suffix: str):
     """(variant text, where) for each place an integer stands in ``text``:
-    the first integer with each context (the 24 characters before it, the
+    the first integer with each context (the 16 characters before it, the
     digits in them made #)."""
     seen = set()
     for m in _INT.finditer(text):
@@ -63,7 +61,7 @@ def variants(text: str, suffix: str):
         before = text[line_start:m.start()]
         if suffix == ".ls" and _TP_VALUE.search(before.replace(" ", "")):
             continue
-        key = re.sub(r"[0-9]+", "#", before[-24:])
+        key = re.sub(r"[0-9]+", "#", before[-16:])
         if key in seen:
             continue
         seen.add(key)
