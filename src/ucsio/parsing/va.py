@@ -415,6 +415,9 @@ def _type_of(desc: str):
 
 def _index(text: str):
     """[1,2] -> (1, 2); None for anything else."""
+    g, comma, n = text[1:-1].partition(",")
+    if comma and g.isdecimal() and n.isdecimal() and len(g) < 10 and len(n) < 10:
+        return int(g), int(n)           # the usual [g,n], without the general split
     parts = text[1:-1].split(",")
     if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
         return None         # a 10-digit index: not a frame's (and no huge int() below)
@@ -472,6 +475,8 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
                 f"{r.name} is {r.desc.rpartition(':')[2].strip() or 'untyped'}: expected "
                 "ARRAY[groups,frames] OF POSITION; no frames read from it")
         return
+    import bisect
+    starts = doc.line_starts        # a frame's line: hundreds of them, one bisect each
     for m in r.members:
         if m.kind != "element":
             cf.lint(m.pos, "not-a-frame-array", f"{r.name}: a Field in an array of frames")
@@ -482,7 +487,7 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
                     f"{r.name}{m.key}: a frame's index is [group,frame]")
             continue
         g, n = index
-        line = doc.line_of(m.pos)
+        line = bisect.bisect_right(starts, m.pos)
         if not (1 <= g <= dims[0] and 1 <= n <= dims[1]):
             cf.lint(m.pos, "index-out-of-range",
                     f"{r.name}{m.key} is outside the declared size [{dims[0]},{dims[1]}]")
