@@ -163,11 +163,10 @@ def line_starts(text: str) -> list[int]:
     starts = [0]
     append = starts.append
     if not _bare_cr(text):
-        find = text.find
-        i = find("\n")
-        while i != -1:
-            append(i + 1)
-            i = find("\n", i + 1)
+        # each line's length + 1, summed (split and accumulate run in C)
+        from itertools import accumulate
+        starts += accumulate(len(line) + 1 for line in text.split("\n"))
+        starts.pop()                # the end of the text: no line starts there
         return starts
     pos = 0
     for m in _CR_RUN.finditer(text):
@@ -213,6 +212,11 @@ def shown_digits(text: str) -> str:
 def text_lines(text: str) -> list[str]:
     """Lines without their endings (``line_starts``' rule), for showing diffs;
     a final line ending adds no line."""
+    if not _bare_cr(text):              # every line ends at an LF: split in C
+        lines = text.split("\n")
+        if lines[-1] == "":
+            lines.pop()
+        return [line.rstrip("\r\n") for line in lines]
     starts = line_starts(text)
     if starts[-1] != len(text):
         starts.append(len(text))
