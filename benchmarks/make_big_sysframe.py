@@ -22,6 +22,8 @@ _RECORD = re.compile(r"(\[\*SYSTEM\*\]\$MNU(?:FRAME|TOOL)  Storage: SHADOW  Acce
                      r"ARRAY\[)(\d+),(\d+)(\] OF POSITION\r?\n)((?:    \[\d+,\d+\] = .*?(?=\r?\n\r?\n|"
                      r"\r?\n\[)\r?\n))", re.S)
 _ELEMENT = re.compile(r"    \[(\d+),(\d+)\] = ")
+_X = re.compile(r"(  X: +)(-?[0-9]*\.[0-9]+)")
+BACKUP = CORPUS / "JuniorNatalin__VASC__KJLTVX__Backups__24.06.2024__LTVR__kjltvr411670r01__SYSFRAME.VA"
 
 
 def _fallback() -> str:
@@ -37,8 +39,30 @@ def _fallback() -> str:
     return "".join(out)
 
 
-def big_sysframe(kb: float = 100) -> str:
-    text = SOURCE.read_bytes().decode("ascii") if SOURCE.is_file() else _fallback()
+def backup_sysframe(kb: float = 100) -> str:
+    """A sysframe.va shaped like a whole real backup's: the VASC robot
+    kjltvr411670r01's (4 groups; $CELL_FLOOR, $CELL_GRP with its POSITION
+    fields, $MNUFRAME [4,20], $MNUFRAMENUM, $MNUTOOL [4,29], $MNUTOOLNUM),
+    its frame records grown to ``kb``, with CRLF as the controller writes
+    (git stored it LF). Each copy moves the set frames' X by a few
+    hundredths, so that they are distinct frames, as a real cell's are."""
+    text = BACKUP.read_bytes().decode("ascii") if BACKUP.is_file() else None
+    return big_sysframe(kb, text, vary=True).replace("\r\n", "\n").replace("\n", "\r\n")
+
+
+def _moved(element: str, copy: int) -> str:
+    """``element`` with its X moved by ``copy`` * 0.013 mm where it is set."""
+    m = _X.search(element)
+    if m is None or float(m.group(2)) == 0.0 or copy == 0:
+        return element
+    x = f"{float(m.group(2)) + copy * 0.013:9.3f}"
+    return element[:m.start(2)] + x[-len(m.group(2)):].rjust(len(m.group(2))) + \
+        element[m.end(2):]
+
+
+def big_sysframe(kb: float = 100, text: str | None = None, vary: bool = False) -> str:
+    if text is None:
+        text = SOURCE.read_bytes().decode("ascii") if SOURCE.is_file() else _fallback()
     records = list(_RECORD.finditer(text))
     per_copy = sum(len(m.group(5)) for m in records)
     copies = max(1, round((kb * 1000 - (len(text) - per_copy)) / per_copy))
@@ -50,6 +74,7 @@ def big_sysframe(kb: float = 100) -> str:
         for c in range(copies):
             for e in elements:
                 g, n = (int(x) for x in _ELEMENT.match(e).groups())
+                e = _moved(e, c) if vary else e
                 grown.append(_ELEMENT.sub(f"    [{g},{n + c * size}] = ", e, count=1))
         grown.sort(key=lambda e: tuple(int(x) for x in _ELEMENT.match(e).groups()))
         out.append(text[pos:m.start()] + m.group(1) + f"{groups},{size * copies}" + m.group(4)

@@ -169,3 +169,55 @@ def test_a_tcp_from_an_unset_tool_is_warned_about(tmp_path, capsys):
     assert any(w.startswith("tool: TOOL_DATA[4] is unset") and "tcp = [0, 0, 0]" in w
                for w in unset["warnings"])
     assert not any("is unset" in w for w in set_.get("warnings", []))
+
+
+# FANUC names the frames nobody named: UFrame7, Eoat2 (issue 24 point 5)
+ZERO = ("  X:     0.000   Y:     0.000   Z:     0.000\r\n"
+        "  W:     0.000   P:     0.000   R:     0.000\r\n")
+SET = ("  X:  1200.500   Y:  -300.250   Z:      .750\r\n"
+       "  W:      .140   P:     -.080   R:    90.000\r\n")
+
+
+def _element(g: int, n: int, comment: str, values: str) -> str:
+    return f"    [{g},{n}] =   '{comment}' \r\n  Group: {g}   Config: N U T, 0, 0, 0\r\n" + values
+
+
+def _sysframe(frames, tools) -> str:
+    def record(name, elements, size):
+        return (f"[*SYSTEM*]$MNU{name}  Storage: SHADOW  Access: RW  : ARRAY[2,{size}] OF "
+                "POSITION\r\n" + "".join(_element(*e) for e in elements) + "\r\n")
+    return record("FRAME", frames, 9) + record("TOOL", tools, 9)
+
+
+def test_fanuc_default_comments_are_no_name(tmp_path, capsys):
+    va = tmp_path / "sysframe.va"
+    va.write_bytes(_sysframe(
+        [(1, 1, "UFrame1", ZERO), (1, 2, "UFrame2", SET), (1, 3, "UFrame7", ZERO),
+         (2, 7, "UFRAME 7", ZERO), (1, 4, "TABLE", ZERO)],
+        [(1, 1, "Eoat1", ZERO), (2, 2, "Eoat2", ZERO), (1, 3, "UTool3", ZERO),
+         (1, 4, "Eoat4x", ZERO)]).encode())
+    got = frames_json(va, capsys)
+    unset = sorted(n for n, f in got.items() if not f["set"])
+    # the default comment of the frame itself; not UF3's 'UFrame7' (it names
+    # another frame: someone wrote it), not 'TABLE', not a word after the number
+    assert unset == ["UF1", "UF7@2", "UT1", "UT2@2", "UT3"]
+    assert got["UF2"]["set"] is True and got["UF2"]["label"] == "UFrame2"
+    assert main(["frames", str(va)]) == 0
+    out = capsys.readouterr().out
+    assert "5 unset frames not listed" in out and "Eoat1" not in out and "UFrame7" in out
+    assert main(["frames", str(va), "--all"]) == 0
+    assert "Eoat1" in capsys.readouterr().out
+
+
+def test_fanuc_default_comments_from_framevar_beside(tmp_path, capsys):
+    (tmp_path / "SYSFRAME.VA").write_bytes(_sysframe(
+        [(1, 1, "", ZERO), (1, 2, "", ZERO)], [(1, 1, "", ZERO)]).encode())
+    (tmp_path / "FRAMEVAR.VA").write_bytes(
+        b"[TPFDEF]SETUP_DATA  Storage: CMOS  Access: RW  : ARRAY[8,3,61] OF FRMSET_T\r\n"
+        b"         Field: SETUP_DATA[1,1,1].$COMMENT Access: RW: STRING[29] = 'Eoat1'\r\n"
+        b"         Field: SETUP_DATA[1,3,1].$COMMENT Access: RW: STRING[29] = 'UFrame1'\r\n"
+        b"         Field: SETUP_DATA[1,3,2].$COMMENT Access: RW: STRING[29] = 'CAR 0'\r\n")
+    got = frames_json(tmp_path / "SYSFRAME.VA", capsys)
+    assert got["UF1"]["label"] == "UFrame1" and got["UF1"]["set"] is False
+    assert got["UT1"]["label"] == "Eoat1" and got["UT1"]["set"] is False
+    assert got["UF2"]["set"] is True

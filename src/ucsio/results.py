@@ -159,7 +159,8 @@ class Worst(Result):
 # ------------------------------------------------------------------ frames
 
 class NotRead(Result):
-    """A file listed but not read (a FANUC backup's binary .tp .sv .vr)."""
+    """A file listed but not read (a FANUC backup's binary .tp .sv .vr and
+    its .DAT files, another controller's files)."""
     file: str
     reason: str
 

@@ -155,7 +155,10 @@ def run(args) -> int:
         print(f"{s.name}: not read: {s.reason}")
     if len(results) + len(errors) + len(not_read) > 1:
         n_warn = sum(l["severity"] == "warning" for r in results for l in r["lints"])
-        binary = f", {len(not_read)} binary (not read)" if not_read else ""
+        from ..parsing.backup import Foreign
+        what = "listed, not read" if any(isinstance(s, Foreign) for s in not_read) else \
+            "binary (not read)"
+        binary = f", {len(not_read)} {what}" if not_read else ""
         print(f"{len(results) + len(errors) + len(not_read)} files: {len(results)} read, "
               f"{len(errors)} not read{binary}, "
               f"{sum(not r['round_trip'] for r in results)} round trips failed, {n_warn} warnings")

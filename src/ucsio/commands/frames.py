@@ -94,5 +94,9 @@ def _not_read_line(not_read) -> str:
         counts[suffix] = counts.get(suffix, 0) + 1
     what = ", ".join(f"{n} {k}" for k, n in sorted(counts.items()))
     n = len(not_read)
+    from ..parsing.backup import Foreign
+    if any(isinstance(s, Foreign) for s in not_read):
+        return (f"{n} file{'s' if n != 1 else ''} not read ({what}): FANUC binaries and data, "
+                "or other controllers' files (check lists each with why)")
     return (f"{n} binary FANUC file{'s' if n != 1 else ''} not read ({what}): ucsio reads "
             "their ASCII twins (.ls, .va)")

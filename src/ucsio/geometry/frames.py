@@ -200,6 +200,19 @@ def number_values(numbers) -> list[float]:
     return [n.value for n in base.values()]
 
 
+def number_texts(numbers, memo: dict | None = None) -> dict[str, str]:
+    """How a frame's numbers are written, by component, without making
+    moved spans. ``memo`` (id of the numbers read -> texts) reads each of a
+    listing's shared sets of numbers once, however many frames repeat it."""
+    base = numbers.base if isinstance(numbers, ShiftedNumbers) else numbers
+    if memo is None:
+        return {k: n.text for k, n in base.items()}
+    got = memo.get(id(base))
+    if got is None:
+        got = memo[id(base)] = {k: n.text for k, n in base.items()}
+    return got
+
+
 class Frame(Value):
     __slots__ = ("name", "vendor", "type", "pose", "file", "line", "reference", "label",
                  "numbers", "info", "document")

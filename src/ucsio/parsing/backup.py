@@ -74,6 +74,21 @@ class Binary(Source):
                "ucsio reads)"
 
 
+class Foreign(Binary):
+    """A file of a folder or archive ucsio recognises and does not read
+    (parsing.foreign: another controller's, a FANUC backup's .DAT)."""
+
+    __slots__ = ("why",)
+
+    def __init__(self, source: Source, why: str):
+        super().__init__(source.name, source.rel, source.path, source.archive, source.member)
+        self.why = why
+
+    @property
+    def reason(self) -> str:
+        return self.why
+
+
 class Failure(Value):
     """An input that could not be read at all (a missing path, a broken archive)."""
 
@@ -136,14 +151,37 @@ def folder_sources(folder: str) -> list[Source]:
     found = []
     for root, dirs, files in os.walk(folder, onerror=None):
         dirs.sort()
+        listed = []
         for f in files:
             kind = _kind(f)
             if kind is not None:
                 full = os.path.join(root, f)
                 rel = os.path.relpath(full, folder).replace(os.sep, "/")
-                found.append(kind(full, rel, path=full))
+                listed.append(kind(full, rel, path=full))
+        found += _fanuc_data(listed, files)
     found.sort(key=lambda s: s.rel.casefold())
     return found
+
+
+def _fanuc_data(sources: list[Source], names) -> list[Source]:
+    """``sources`` of one folder holding ``names``, each .dat that is a
+    FANUC backup's own (parsing.foreign: by the folder and its text) made
+    Foreign: listed as not read."""
+    from . import foreign
+    if not foreign.is_fanuc_backup(names):
+        return sources
+    out = []
+    for s in sources:
+        if type(s) is Source and s.rel.lower().endswith(".dat"):
+            try:
+                head = s.read()[:4096].decode("latin-1")
+            except UcsioError:
+                head = ""       # reading it fails again, and is reported, where it is read
+            why = foreign.fanuc_data(s.rel, head, names)
+            if why is not None:
+                s = Foreign(s, why)
+        out.append(s)
+    return out
 
 
 _OPEN: dict[str, object] = {}   # archive path -> ZipFile: its directory is read once per run
@@ -168,11 +206,26 @@ def archive_sources(archive: str) -> list[Source]:
     found = [_kind(n)(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
                       archive=archive, member=n)
              for n in names if _kind(n) is not None]
+    found = _by_folder(found, names)
     if not found:
         raise UcsioError("no controller files (" + " ".join(BACKUP_SUFFIXES)
                          + ") in this archive", file=archive)
     found.sort(key=lambda s: s.rel.casefold())
     return found
+
+
+def _by_folder(sources: list[Source], names: list[str]) -> list[Source]:
+    """An archive's sources, each folder's .dat files decided by the folder
+    they are in (``_fanuc_data``)."""
+    folders: dict[str, list[str]] = {}
+    for n in names:
+        d, _, base = n.replace("\\", "/").lstrip("/").rpartition("/")
+        folders.setdefault(d.casefold(), []).append(base)
+    out = []
+    for s in sources:
+        folder = s.rel.rpartition("/")[0].casefold()
+        out += _fanuc_data([s], folders.get(folder, ()))
+    return out
 
 
 def _read_member(archive: str, member: str, name: str) -> bytes:
@@ -203,20 +256,29 @@ def load_all(paths: list[str], full: bool = False):
     ``(parsed, errors, not_read)``: (Source, ControllerFile) pairs,
     UcsioErrors, and the Binary files of the backups (listed, not read), so
     that one bad file is reported beside the others, never instead of them."""
+    from .controller import Unsupported
     parsed, errors, not_read = [], [], []
-    for s in expand(paths):
-        if isinstance(s, Failure):
-            errors.append(s.error)
-            continue
-        if isinstance(s, Binary):
-            not_read.append(s)
-            continue
-        try:
-            parsed.append((s, s.load(full=full)))
-        except UcsioError as exc:
-            if exc.file is None:
-                exc.file = s.name
-            errors.append(exc)
+    for p in paths:
+        many = is_many(os.fspath(p))
+        for s in expand([p]):
+            if isinstance(s, Failure):
+                errors.append(s.error)
+                continue
+            if isinstance(s, Binary):
+                not_read.append(s)
+                continue
+            try:
+                parsed.append((s, s.load(full=full)))
+            except Unsupported as exc:
+                if not many:
+                    errors.append(exc)
+                    continue
+                # another controller's file, found in a folder: listed, as a binary is
+                not_read.append(Foreign(s, exc.message))
+            except UcsioError as exc:
+                if exc.file is None:
+                    exc.file = s.name
+                errors.append(exc)
     return parsed, errors, not_read
 
 

@@ -166,6 +166,7 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
     ``beside``: the files beside the document's path are its backup's (a
     FANUC sysframe.va takes its frames' comments from them); False for a
     file that stands alone (git's textconv hands over a temporary copy)."""
+    _refuse_foreign(doc, beside)
     if looks_binary(doc.raw):
         from .fanuc import BINARY_SUFFIXES
         if os.path.splitext(doc.path)[1].lower() in BINARY_SUFFIXES:
@@ -199,6 +200,22 @@ def _binary_error(doc: Document) -> UcsioError:
     before = doc.raw[len(BOM) if doc.bom else 0:at].decode(doc.encoding)
     return doc.error(f"binary or encrypted file (byte 0x{doc.raw[at]:02x} here): refusing to "
                      "read or patch it", len(before))
+
+
+def _refuse_foreign(doc: Document, beside: bool) -> None:
+    """A file ucsio recognises and does not read (another controller's, a
+    FANUC backup's .DAT: parsing.foreign) is refused with what it is."""
+    from . import foreign
+    why = foreign.other_vendor(doc.path, doc.text[:512])
+    if why is None and beside and doc.path.lower().endswith(".dat"):
+        why = foreign.fanuc_data(doc.path, doc.text[:4096], foreign.beside(doc.path))
+    if why is not None:
+        raise Unsupported(why, file=doc.path)
+
+
+class Unsupported(UcsioError):
+    """A file ucsio recognises and does not read: named on its own it is an
+    error; in a folder or an archive it is listed as not read."""
 
 
 def load(path: str | os.PathLike, full: bool = False) -> ControllerFile:

@@ -151,7 +151,7 @@ def current_positions(doc: Document) -> list[CurrentPosition]:
         lineno = doc.line_of(pos)
         m = _GROUP.match(line)
         if m is not None:
-            cur = CurrentPosition(int(m.group(1)), lineno)
+            cur = CurrentPosition(doc.integer(m.group(1), pos + m.start(1), "group"), lineno)
             out.append(cur)
             section = None
             continue
@@ -178,15 +178,16 @@ def current_positions(doc: Document) -> list[CurrentPosition]:
             continue
         m = _FRAME_TOOL.match(line)
         if m is not None:
-            cur.uf, cur.ut = int(m.group(1)), int(m.group(2))
+            cur.uf = doc.integer(m.group(1), pos + m.start(1), "frame number")
+            cur.ut = doc.integer(m.group(2), pos + m.start(2), "tool number")
             continue
         m = _TOOL.match(line)
         if m is not None:
-            pending_tool = int(m.group(1))
+            pending_tool = doc.integer(m.group(1), pos + m.start(1), "tool number")
             continue
         m = _JOINT.match(line)
         if m is not None:
-            cur.joints[int(m.group(1))] = _number(doc, m, 2, pos)
+            cur.joints[doc.integer(m.group(1), pos + m.start(1), "joint")] = _number(doc, m, 2, pos)
             continue
         m = _CFG.match(line)
         if m is not None and section in ("user", "world"):

@@ -92,6 +92,15 @@ class Document:
         line, col = self.line_col(offset)
         return UcsioError(message, file=self.path, line=line, col=col)
 
+    def integer(self, text: str, offset: int, what: str = "integer") -> int:
+        """``text``, an index, group or frame number the file writes at
+        ``offset``, as an int; beyond 32 bits (no controller's index is) an
+        error naming the line (``small_int``)."""
+        value = small_int(text)
+        if value is None:
+            raise self.error(f"{what} {shown_digits(text)} is out of range (32 bits)", offset)
+        return value
+
     def readable(self, s: str) -> str:
         """Text from this file as a person reads it. A non-UTF-8 file is held
         as Latin-1 (so every byte round-trips); its strings were written in
@@ -154,11 +163,10 @@ def line_starts(text: str) -> list[int]:
     starts = [0]
     append = starts.append
     if not _bare_cr(text):
-        find = text.find
-        i = find("\n")
-        while i != -1:
-            append(i + 1)
-            i = find("\n", i + 1)
+        # each line's length + 1, summed (split and accumulate run in C)
+        from itertools import accumulate
+        starts += accumulate(len(line) + 1 for line in text.split("\n"))
+        starts.pop()                # the end of the text: no line starts there
         return starts
     pos = 0
     for m in _CR_RUN.finditer(text):
@@ -178,9 +186,37 @@ def line_starts(text: str) -> list[int]:
     return starts
 
 
+INT_MAX = 2 ** 31 - 1       # every controller's indices, groups and frame numbers fit 32 bits
+
+
+def small_int(text: str, most: int = INT_MAX) -> int | None:
+    """Decimal ``text`` (blanks and a sign allowed) as an int, or None where
+    it is beyond ``most``. Its length is judged before int() sees it: Python
+    refuses more than 4,300 digits with a ValueError, and a million digits
+    cost seconds. Every integer a reader takes from a file's text comes
+    through here (tests/test_huge_integers.py)."""
+    digits = text.strip().lstrip("+-").lstrip("0")
+    if len(digits) > len(str(most)):
+        return None
+    value = int(text)
+    return value if abs(value) <= most else None
+
+
+def shown_digits(text: str) -> str:
+    """An integer in a message: whole where short, else its first digits
+    and its length."""
+    text = text.strip()
+    return text if len(text) <= 20 else f"{text[:12]}... ({len(text)} digits)"
+
+
 def text_lines(text: str) -> list[str]:
     """Lines without their endings (``line_starts``' rule), for showing diffs;
     a final line ending adds no line."""
+    if not _bare_cr(text):              # every line ends at an LF: split in C
+        lines = text.split("\n")
+        if lines[-1] == "":
+            lines.pop()
+        return [line.rstrip("\r\n") for line in lines]
     starts = line_starts(text)
     if starts[-1] != len(text):
         starts.append(len(text))

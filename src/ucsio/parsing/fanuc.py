@@ -79,6 +79,25 @@ def make_frame(doc: Document, ftype: str, number, group: int, line: int,
                  numbers=dict(numbers or {}), info=extra, document=doc)
 
 
+# The comments a controller gives frames nobody named (UFrame7, Eoat2): a
+# frame's number after one of these words; ucsio.review.unset counts such a
+# comment as no name, as it counts KUKA's TOOL_NAME[2,]="TOOL_DATA[2]".
+DEFAULT_COMMENTS = {"UFRAME": ("uframe",), "UTOOL": ("eoat", "utool")}
+
+
+def default_comment(ftype: str, name: str, label: str) -> bool:
+    """Whether ``label`` is the controller's default comment of the frame
+    called ``name`` (UF7@2: 'UFrame7'; UT2: 'Eoat2'), case and blanks aside."""
+    import re
+    number = re.match(r"U[FT]([0-9]+)(?:@|\Z)", name)
+    words = DEFAULT_COMMENTS.get(ftype, ())
+    if number is None or not words:
+        return False
+    said = re.fullmatch(r"([a-z]+)[ _]*0*([0-9]+)", label.strip().casefold())
+    return said is not None and said.group(1) in words and \
+        said.group(2) == number.group(1).lstrip("0")
+
+
 def range_problem(key: str, value: float) -> str | None:
     """Why a frame component is out of what the controller holds, or None."""
     if key in ("w", "p", "r"):

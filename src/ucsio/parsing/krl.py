@@ -1219,11 +1219,18 @@ def _positions(doc: Document, full: bool) -> list[Position]:
                 return got[1].value if got is not None and got[1].kind == kind else None
 
             tool, base = field("TOOL_NO", "number"), field("BASE_NO", "number")
-            p.tool_no = None if tool is None else int(tool)
-            p.base_no = None if base is None else int(base)
+            p.tool_no, p.base_no = _int_or_none(tool), _int_or_none(base)
+            if (tool is None) != (p.tool_no is None) or (base is None) != (p.base_no is None):
+                p.pose, p.problem = None, doc.error(f"{p.fdat}: TOOL_NO or BASE_NO is out of "
+                                                    "range for a KRL INT (32 bit)", fd[1])
             p.ipo_frame = field("IPO_FRAME", "enum")
         out.append(p)
     return out
+
+
+def _int_or_none(value: float | None) -> int | None:
+    """A number where KRL wants an INT, or None (none given, or beyond 32 bits)."""
+    return None if value is None or not abs(value) <= INT_MAX else int(value)
 
 
 def _position_pose(name: str, ptype: str, v: _Val):
@@ -1239,5 +1246,8 @@ def _position_pose(name: str, ptype: str, v: _Val):
             return None, (f"{name}: component {c.upper()} missing", v.start)
         if got[1].kind != "number":
             return None, (f"{name}: component {c.upper()} is not a number", got[1].start)
+        if not abs(got[1].value) <= REAL_MAX:
+            return None, (f"{name}: component {c.upper()} is out of range for a KRL REAL "
+                          "(float32)", got[1].start)
         comps[c] = got[1].value
     return Pose.from_abc(*(comps[c] for c in COMPONENTS)), None

@@ -40,7 +40,7 @@ from ..geometry.frames import Number
 from ..values import Value
 from . import fanuc, regex
 from .controller import ControllerFile
-from .document import Document, Span, lf_lines
+from .document import Document, Span, lf_lines, small_int
 from .lalr import Rejected, Tree
 
 START = ("file",)
@@ -205,7 +205,7 @@ def _pr_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int) -> None:
     i = 1
     gp = group
     if getattr(ch[i], "type", None) == "GROUP_PREFIX":
-        gp = int(ch[i].value[2:].rstrip(" \t:"))
+        gp = cf.document.integer(ch[i].value[2:].rstrip(" \t:"), ch[i].start_pos, "group")
         i += 1
     index = ch[i]
     number = _literal_index(index)
@@ -241,7 +241,7 @@ def _whole_value(value, number: int) -> _Register:
         zero = "-" in words
         return _Register(dict.fromkeys(range(1, 7), ZERO if zero else None), joint)
     m = _SELF_MINUS.match(text) if value.type == "REST" else None
-    if m is not None and int(m.group(1)) == number == int(m.group(2)):
+    if m is not None and small_int(m.group(1)) == number == small_int(m.group(2)):
         return _Register(dict.fromkeys(range(1, 7), ZERO), False)
     return _Register(dict.fromkeys(range(1, 7)), False)
 
@@ -418,5 +418,7 @@ def _point_group(doc: Document, node: Tree) -> PointGroup:
         values[key] = (None if value.type == "STARS" else
                        Number(Span(value.start_pos, value.end_pos), value.value, float(value.value)))
         units[key] = unit.value
-    return PointGroup(int(gp.value[2:]), int(uf.value), int(ut.value), config, values, units,
+    group, uf_n, ut_n = (doc.integer(t.value[2:] if t is gp else t.value, t.start_pos, what)
+                         for t, what in ((gp, "group"), (uf, "user frame"), (ut, "tool frame")))
+    return PointGroup(group, uf_n, ut_n, config, values, units,
                       doc.line_of(gp.start_pos), gp.start_pos, uf.start_pos, ut.start_pos)

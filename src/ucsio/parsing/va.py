@@ -27,11 +27,15 @@ for KRL (ucsio.parsing.krl):
   fill most of a sysframe.va) is blanked too: its line up to the "=" is
   what the grammar's INDEX and "=" read (the outline's pattern is theirs),
   the rest is text the grammar read once already; it shares that element's
-  reading, moved to its own offsets. A 100 KB sysframe.va costs the parse
-  of its distinct elements, not of 3,000 lines.
+  reading, moved to its own offsets. An element written as the controller
+  writes one (``_PLAIN``: a comment, the Group/Config line, X Y Z and W P R
+  lines of plain numbers) is blanked too and read from its words, as the
+  grammar would read it; any other (a comment over a line end, stars,
+  units, glued tokens) goes through the grammar. A 100 KB sysframe.va costs
+  one regular expression per distinct element, not 3,000 lines of parsing.
 
 Both paths give the same frames and lints (tests/test_fanuc.py checks it on
-the corpus).
+the corpus, tests/test_va_listings.py on generated and mutated listings).
 """
 from __future__ import annotations
 
@@ -41,7 +45,7 @@ from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, ShiftedNumbers
 from . import fanuc, regex
 from .controller import ControllerFile
-from .document import Document, Span, lf_lines, masked
+from .document import Document, Span, lf_lines, masked, small_int
 from .lalr import Rejected, Tree
 
 START = ("file",)
@@ -61,9 +65,28 @@ _FIRST = regex.lazy(r"[^\s]")
 # an element's line up to its "=": the grammar's WS? INDEX WS? "=" (searched
 # in "\n" + text; group 1 the INDEX)
 _ELEMENT = regex.lazy(r"\n[ \t\f\r]*(\[[0-9 ,]*\])[ \t\f\r]*=")
+# A frame element as the controller writes it, from its INDEX to the next
+# element (fullmatch from the INDEX's line start; the grammar's terminals,
+# WS between them, each line's end and the blank lines after it its _NL):
+#     [1,1] =   'FIXTURE'
+#   Group: 1   Config: N U T, 0, 0, 0
+#   X:  3495.600   Y:  5813.000   Z: -1166.400
+#   W:      .140   P:      .080   R:   -90.040
+# The fast path reads such an element from these groups instead of the
+# grammar; anything else (a comment over a line end, an inline group, units,
+# stars, glued tokens) goes to the grammar as before.
+_B = r"[ \t\f\r]"                        # WS
+_NUM = r"([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
+_COORDS = "".join(rf"{_B}*({axis})[ \t]*:{_B}*{_NUM}" + (rf"{_B}*\n[ \t\f\r\n]*" if axis in "ZR"
+                                                           else rf"{_B}+")
+                  for axis in "XYZWPR")
+_PLAIN = regex.lazy(rf"{_B}*\[[0-9 ,]*\]{_B}*={_B}*(?:('[^'\n]*'){_B}*)?\n[ \t\f\r\n]*"
+                    rf"(Group)[ \t]*:{_B}*([0-9]+){_B}*Config[ \t]*:{_B}*"
+                    rf"([^\s](?:[^\n]*[^\s])?)?{_B}*\n[ \t\f\r\n]*{_COORDS}")
 # FRAMEVAR.VA: a SETUP_DATA comment that is not empty
+# (its string on the line, or on the next: a long one)
 _COMMENT_FIELD = regex.lazy(r"\n[ \t\f\r]*Field:[ \t\f\r]+SETUP_DATA\[[^\n]*\$COMMENT[^\n=]*="
-                            r"[ \t\f\r]*'[^'\n]")
+                            r"[ \t\f\r]*(?:\n[ \t\f\r]*)?'[^'\n]")
 # a record's type, from its DESC: ... : ARRAY[2,32] OF POSITION
 _ARRAY = regex.lazy(r"ARRAY\[([0-9 ,]*)\][ \t]+OF[ \t]+(.+)\Z")
 _PATH_INDEX = regex.lazy(r"SETUP_DATA\[([0-9]+),([0-9]+),([0-9]+)\]\.\$COMMENT\Z", re.I)
@@ -86,48 +109,66 @@ def _line_end(text: str, pos: int) -> int:
     return len(text) if end < 0 else end
 
 
-def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict]:
+def _kept_end(text: str, pos: int) -> int:
+    """Where the line at ``pos`` ends, or the line its last string ends on
+    where that string runs over the line end (a listing's strings hold no
+    quote: an odd count leaves one open)."""
+    end = _line_end(text, pos)
+    while text.count("'", pos, end) % 2:
+        close = text.find("'", end)
+        if close < 0:
+            return len(text)
+        pos, end = close + 1, _line_end(text, close)
+    return end
+
+
+def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict, dict]:
     """The spans the fast path keeps: every record's head line, the file's
     first line, and where ``wanted(name)`` says "record" the whole record
     (its repeated elements blanked: see the module's doc) or "comments" its
-    SETUP_DATA comment lines. Returns (spans, shared), ``shared`` mapping the
-    INDEX offset of an element left out to (its INDEX text, the INDEX offset
-    of the first element with its text, the offset from that one's "=" to
-    this one's)."""
+    SETUP_DATA comment lines. Returns (spans, shared, plain), ``shared``
+    mapping the INDEX offset of an element left out to (its INDEX text, the
+    INDEX offset of the first element with its text, the offset from that
+    one's "=" to this one's), ``plain`` the INDEX offset of an element read
+    from its words (``_PLAIN``) to (its INDEX text, its Entry)."""
     spans = []
     shared: dict[int, tuple[str, int, int]] = {}
+    plain: dict[int, tuple[str, Entry]] = {}
     seen: dict[str, tuple[int, int]] = {}
     first = _FIRST.search(text)
     if first is not None:
         s = text.rfind("\n", 0, first.start()) + 1
-        spans.append((s, _line_end(text, s)))
+        spans.append((s, _kept_end(text, s)))
     nl = "\n" + text           # the line patterns start with the "\n" before a line
     for start, name, end in _records(nl):
-        head_end = _line_end(text, start)
+        head_end = _kept_end(text, start)
         how = wanted(name)
         if how == "record":
-            spans += _record_spans(text, nl, start, end, seen, shared)
+            spans += _record_spans(text, nl, start, end, seen, shared, plain)
         else:
             spans.append((start, head_end))
             if how == "comments":
                 for m in _COMMENT_FIELD.finditer(nl, head_end + 1, end + 1):
                     s = m.start()           # the "\n" in nl: the line's start in text
-                    spans.append((s, _line_end(text, s)))
+                    spans.append((s, _kept_end(text, m.end() - 3)))    # from its quote on
     merged: list[tuple[int, int]] = []
     for s, e in sorted(spans):              # the first line is a record's head, say
         if merged and s <= merged[-1][1]:
             merged[-1] = (merged[-1][0], max(merged[-1][1], e))
         else:
             merged.append((s, e))
-    return merged, shared
+    return merged, shared, plain
 
 
 def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
-                  shared: dict) -> list[tuple[int, int]]:
+                  shared: dict, plain: dict) -> list[tuple[int, int]]:
     """A frame record's text as spans, each element left out where an
     earlier element of the file wrote exactly the same after its "="
     (``seen``: that text -> (INDEX offset, offset after the "=") of the
-    first; ``shared`` gets the later ones). ``nl``: "\n" + ``text``."""
+    first; ``shared`` gets the later ones), or where it is written as the
+    controller writes one (``_PLAIN``: ``plain`` gets its Entry). ``nl``:
+    "\n" + ``text``."""
+    fullmatch = _PLAIN.fullmatch
     # (line start, INDEX offset, INDEX text, offset after the "="), in text offsets
     marks = [(m.start(), m.start(1) - 1, m.group(1), m.end() - 1)
              for m in _ELEMENT.finditer(nl, start + 1, end + 1)]
@@ -139,9 +180,14 @@ def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
         tail_end = marks[i + 1][0] if i + 1 < len(marks) else end
         src = seen.setdefault(text[eq:tail_end], (index, eq))
         if src[0] != index:
-            spans.append((pos, line))
-            pos = tail_end
             shared[index] = (key, src[0], eq - src[1])
+        else:
+            m = fullmatch(text, line, tail_end)
+            if m is None:
+                continue                # the grammar reads it
+            plain[index] = (key, _plain_entry(m))
+        spans.append((pos, line))
+        pos = tail_end
     spans.append((pos, end))
     return [s for s in spans if s[0] < s[1]]
 
@@ -185,9 +231,9 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
             _parser().recognise(text, "file")
         except Rejected:
             return _whole(doc, text, lark_first=True, beside=beside)
-    spans, shared = outline(text, _frames_wanted)
+    spans, shared, plain = outline(text, _frames_wanted)
     tree = _parse(doc, masked(text, spans))
-    return _interpret(doc, tree, shared, beside)
+    return _interpret(doc, tree, shared, beside, plain)
 
 
 def _frames_wanted(name: str):
@@ -264,6 +310,25 @@ def _entry(children) -> Entry:
     return e
 
 
+def _plain_entry(m) -> Entry:
+    """The Entry the grammar reads from an element ``_PLAIN`` matched."""
+    e = Entry.__new__(Entry)
+    e.scalar = None
+    e.uninit = e.joints = False
+    e.dups = []
+    comment = m.group(1)
+    e.comment, e.comment_pos = (comment[1:-1], m.start(1)) if comment else (None, None)
+    e.group_pos = m.start(2)
+    e.group = int(m.group(3)) if len(m.group(3)) < 10 else -1
+    e.config = m.group(4) or ""
+    e.coords, e.axis_pos = {}, {}
+    for i in range(5, 17, 2):
+        axis, number = m.group(i), m.group(i + 1)
+        e.axis_pos[axis] = m.start(i)
+        e.coords[axis] = Number(Span(m.start(i + 1), m.end(i + 1)), number, float(number))
+    return e
+
+
 def _group(e: Entry, node: Tree) -> None:
     ch = node.children
     e.group_pos = ch[0].start_pos
@@ -280,10 +345,12 @@ class Record:
                  "members")
 
 
-def records(tree: Tree, doc: Document, shared: dict | None = None) -> list[Record]:
-    """The records of a tree, read; ``shared`` (the fast path): the elements
-    left out because they repeat an earlier one, which take its Entry."""
-    read: dict[int, Entry] = {}
+def records(tree: Tree, doc: Document, shared: dict | None = None,
+            plain: dict | None = None) -> list[Record]:
+    """The records of a tree, read; the fast path's elements left out of
+    it: ``shared`` those that repeat an earlier one, which take its Entry,
+    ``plain`` those read from their words (``outline``)."""
+    read: dict[int, Entry] = {pos: entry for pos, (_key, entry) in (plain or {}).items()}
     out = []
     for node in tree.children:
         if not isinstance(node, Tree) or node.data != "record":
@@ -313,21 +380,23 @@ def records(tree: Tree, doc: Document, shared: dict | None = None) -> list[Recor
             e = read[pos] = _entry(rest)
             r.members.append(Member(m.data, key_tok.value, pos, e))
         out.append(r)
-    if shared:
-        _rejoin(out, shared, read)
+    if shared or plain:
+        _rejoin(out, shared or {}, plain or {}, read)
     return out
 
 
-def _rejoin(recs: list[Record], shared: dict, read: dict) -> None:
+def _rejoin(recs: list[Record], shared: dict, plain: dict, read: dict) -> None:
     """Put the elements the fast path left out back into their records, in
-    file order, each with the Entry of the element it repeats."""
+    file order: each read from its words with its Entry, each repeating an
+    earlier one with that one's Entry."""
     import bisect
     heads = [r.head_pos for r in recs]
     touched = set()
-    for pos in sorted(shared):
-        key, src, delta = shared[pos]
+    left_out = [(pos, key, read[pos], 0) for pos, (key, _e) in plain.items()]
+    left_out += [(pos, key, read[src], delta) for pos, (key, src, delta) in shared.items()]
+    for pos, key, entry, delta in left_out:
         i = bisect.bisect_right(heads, pos) - 1
-        recs[i].members.append(Member("element", key, pos, read[src], delta))
+        recs[i].members.append(Member("element", key, pos, entry, delta))
         touched.add(i)
     for i in touched:
         recs[i].members.sort(key=lambda m: m.pos)
@@ -340,23 +409,22 @@ def _type_of(desc: str):
     m = _ARRAY.search(typ)
     if m is None:
         return None, typ
-    try:
-        dims = tuple(int(d) for d in m.group(1).split(","))
-    except ValueError:
-        dims = ()
-    return dims, m.group(2).strip()
+    dims = tuple(small_int(d) if d.strip() else None for d in m.group(1).split(","))
+    return (() if None in dims else dims), m.group(2).strip()
 
 
 def _index(text: str):
     """[1,2] -> (1, 2); None for anything else."""
+    g, comma, n = text[1:-1].partition(",")
+    if comma and g.isdecimal() and n.isdecimal() and len(g) < 10 and len(n) < 10:
+        return int(g), int(n)           # the usual [g,n], without the general split
     parts = text[1:-1].split(",")
+    if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
+        return None         # a 10-digit index: not a frame's (and no huge int() below)
     try:
-        got = tuple(map(int, parts))
+        return tuple(map(int, parts))
     except ValueError:
         return None
-    if len(text) > 20 and any(len(p.strip()) >= 10 for p in parts):
-        return None         # a 10-digit index: not a frame's
-    return got
 
 
 def _moved(numbers: dict, delta: int):
@@ -368,9 +436,10 @@ def _moved(numbers: dict, delta: int):
 
 
 # -- frames ---------------------------------------------------------------------------
-def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True) -> ControllerFile:
+def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True,
+               plain: dict | None = None) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
-    recs = records(tree, doc, shared)
+    recs = records(tree, doc, shared, plain)
     names = {r.name.upper() for r in recs}
     cf.extra["records"] = [r.name for r in recs]
     frame_recs = [r for r in recs if r.name.upper() in FRAME_RECORDS]
@@ -406,6 +475,8 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
                 f"{r.name} is {r.desc.rpartition(':')[2].strip() or 'untyped'}: expected "
                 "ARRAY[groups,frames] OF POSITION; no frames read from it")
         return
+    import bisect
+    starts = doc.line_starts        # a frame's line: hundreds of them, one bisect each
     for m in r.members:
         if m.kind != "element":
             cf.lint(m.pos, "not-a-frame-array", f"{r.name}: a Field in an array of frames")
@@ -416,7 +487,7 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
                     f"{r.name}{m.key}: a frame's index is [group,frame]")
             continue
         g, n = index
-        line = doc.line_of(m.pos)
+        line = bisect.bisect_right(starts, m.pos)
         if not (1 <= g <= dims[0] and 1 <= n <= dims[1]):
             cf.lint(m.pos, "index-out-of-range",
                     f"{r.name}{m.key} is outside the declared size [{dims[0]},{dims[1]}]")
@@ -501,7 +572,7 @@ def frame_comments(doc: Document) -> dict:
     are not blank, read through the grammar (the record's head and those
     lines; the rest blanked)."""
     text = _lines(doc)
-    spans, _ = outline(text, lambda name: "comments" if name == "SETUP_DATA" else None)
+    spans, _, _ = outline(text, lambda name: "comments" if name == "SETUP_DATA" else None)
     tree = _parse(doc, masked(text, spans))
     return comments_of(records(tree, doc))
 
@@ -516,8 +587,8 @@ def comments_of(recs: list[Record]) -> dict:
             m = _PATH_INDEX.search(member.key) if member.kind == "field" else None
             if m is None or e.comment is None or not e.comment.strip():
                 continue
-            g, k, n = (int(x) for x in m.groups())
-            if k in SETUP_KINDS:
+            g, k, n = map(small_int, m.groups())      # None: beyond 32 bits, no frame's
+            if k in SETUP_KINDS and None not in (g, n):
                 out[(SETUP_KINDS[k], n, g)] = e.comment.strip()
     return out
 

@@ -92,10 +92,11 @@ def _same(a: Any, b: Any) -> bool:
     return a == b
 
 
-def frame_changes(old: Frame, new: Frame) -> list[str]:
+def frame_changes(old: Frame, new: Frame, memo: dict | None = None) -> list[str]:
     """Which aspects of a frame differ: 'value' (the pose), 'type',
-    'reference', 'label', and info keys (robhold, ufprog, load, ...)."""
-    if _written_alike(old, new):
+    'reference', 'label', and info keys (robhold, ufprog, load, ...).
+    ``memo``: number_texts' across the frames of two files."""
+    if _written_alike(old, new, memo):
         return []
     out = []
     if not poses_equal(old.pose, new.pose):
@@ -111,14 +112,14 @@ def frame_changes(old: Frame, new: Frame) -> list[str]:
     return out
 
 
-def _written_alike(old: Frame, new: Frame) -> bool:
+def _written_alike(old: Frame, new: Frame, memo: dict | None = None) -> bool:
     """The same numbers written the same way, the same type, reference,
     label and info: nothing can differ (a listing's hundreds of unset
     frames are compared in a blink)."""
-    a, b = old.numbers, new.numbers
+    from ..geometry.frames import number_texts
     return (old.type == new.type and old.reference == new.reference
-            and old.label == new.label and a.keys() == b.keys()
-            and all(a[k].text == b[k].text for k in a) and old.info == new.info)
+            and old.label == new.label and old.info == new.info
+            and number_texts(old.numbers, memo) == number_texts(new.numbers, memo))
 
 
 def _index(frames: list[Frame]) -> dict[str, list[Frame]]:
@@ -137,10 +138,11 @@ def diff_files(old: ControllerFile | None, new: ControllerFile | None) -> dict[s
     changed, added, removed = [], [], []
     unchanged = 0
     order = list(oi) + [k for k in ni if k not in oi]
+    memo: dict = {}
     for key in order:
         olds, news = oi.get(key, []), ni.get(key, [])
         for o, n in zip(olds, news):
-            what = frame_changes(o, n)
+            what = frame_changes(o, n, memo)
             if not what:
                 unchanged += 1
                 continue

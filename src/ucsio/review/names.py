@@ -38,7 +38,10 @@ def outside(cf, name: str) -> str | None:
     m = _ELEMENT.match(name)
     if m is None:
         return None
-    base, index = m.group(1), int(m.group(2) or m.group(3))
+    from ..parsing.document import small_int
+    base, index = m.group(1), small_int(m.group(2) or m.group(3))
+    if index is None:
+        return f"no frame named {name.strip()[:40]!r}: its index is beyond 32 bits"
     kuka = m.group(2) is not None
     key = base.casefold()
     size, spelling = None, base
@@ -50,7 +53,7 @@ def outside(cf, name: str) -> str | None:
         for f in cf.frames:
             e = _ELEMENT.match(f.name)
             if e and e.group(1).casefold() == key and (e.group(2) is not None) == kuka:
-                present.append(int(e.group(2) or e.group(3)))
+                present.append(small_int(e.group(2) or e.group(3)) or 0)
                 spelling = e.group(1)
         if not present:
             return None

@@ -80,8 +80,11 @@ def parse_frame(name: str, group: int | None) -> tuple[str, int, int]:
     m = re.fullmatch(r"\s*(U[FT])\s*([0-9]+)\s*(?:@\s*([0-9]+))?\s*", name, re.I)
     if m is None:
         raise UcsioError(f"--frame {name!r}: expected UFk or UTk (UF3, UT2; UF3@2 for group 2)")
-    kind, number = FRAME_TYPES[m.group(1).upper()], int(m.group(2))
-    at = int(m.group(3)) if m.group(3) else None
+    from ..parsing.document import shown_digits, small_int
+    kind, number = FRAME_TYPES[m.group(1).upper()], small_int(m.group(2))
+    at = small_int(m.group(3)) if m.group(3) else None
+    if number is None or (m.group(3) and at is None):
+        raise UcsioError(f"--frame {shown_digits(name)}: frame number 1...999 and group 1...8")
     if at is not None and group is not None and at != group:
         raise UcsioError(f"--frame {name!r} names group {at}, --group says {group}")
     g = at if at is not None else group if group is not None else 1    # 0 is no group

@@ -16,7 +16,8 @@ six values 0 and a blank name. Nobody taught or named them. A frame is
 FANUC's sysframe.va is the same kind of table: ``$MNUFRAME`` and
 ``$MNUTOOL`` list every user and tool frame of every group, and an entry
 whose six values X, Y, Z, W, P, R are all exactly 0 and that has no comment
-(its own, or from frame.dg / FRAMEVAR.VA beside it) is unset too. A frame a
+(its own, or from frame.dg / FRAMEVAR.VA beside it) or only the comment the
+controller gives a frame nobody named (``UFrame7``, ``Eoat2``) is unset too. A frame a
 TP program sets is set, whatever its values: the program says so.
 
 Everything else is set: a named zero base (someone chose it), the FRAMEs a
@@ -55,7 +56,19 @@ def is_set(frame, cf=None) -> bool:
     if len(values) != 6 or any(v != 0 for v in values):
         return True
     label = (frame.label or "").strip()
-    return bool(label) and label.casefold() != frame.name.casefold()
+    return bool(label) and not _default_name(frame, label)
+
+
+def _default_name(frame, label: str) -> bool:
+    """Whether ``label`` is a name the controller gave, not a person: the
+    frame's own name (TOOL_NAME[2,]="TOOL_DATA[2]"), or FANUC's default
+    comment (UFrame7, Eoat2: parsing.fanuc.default_comment)."""
+    if label.casefold() == frame.name.casefold():
+        return True
+    if frame.vendor == "fanuc":
+        from ..parsing.fanuc import default_comment
+        return default_comment(frame.type, frame.name, label)
+    return False
 
 
 def as_dict(frame, cf=None) -> dict[str, Any]:

@@ -1,0 +1,74 @@
+"""Files ucsio recognises but does not read.
+
+Two kinds:
+
+- other controllers' files: Yaskawa Motoman (``.JBI`` jobs, ``.CND``
+  condition files, and the ``SYSTEM.SYS``/``VAR.DAT`` of its backups, whose
+  suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
+  (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
+  ``.installation``);
+- a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
+  a ``.dat`` is KUKA data by its suffix only where its text or its folder
+  does not say otherwise. A folder holding ``SYSFRAME.VA`` and ``.LS``
+  programs is a FANUC backup; a ``.dat`` in it that does not read as KRL
+  (``&ACCESS``, ``DEFDAT``) is FANUC's.
+
+Named on its own such a file is refused with what it is (exit 2); found in
+a folder or an archive it is listed as not read, as a FANUC backup's
+binaries are (ucsio.parsing.backup).
+"""
+from __future__ import annotations
+
+import os
+
+from . import regex
+
+# (what it is, whose files ucsio does not read, suffixes that say it, a
+# pattern its first characters match where its suffix is another vendor's)
+KNOWN = (
+    ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
+    ("a Yaskawa Motoman file", "Yaskawa", (".cnd", ".prm"), r"/SYSTEM\b|//[A-Z]+"),
+    ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
+    ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
+)
+_HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
+# a KUKA .dat: its header lines or its DEFDAT, before anything else
+_KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")
+FANUC_DATA = "a FANUC backup's data file (.DAT); ucsio reads its ASCII listings (.va, .ls, .dg)"
+
+
+def other_vendor(name: str, head: str) -> str | None:
+    """What ``name`` is, where it is another controller's file ucsio does not
+    read (by its suffix, or by ``head``, its first characters); else None."""
+    suffix = os.path.splitext(name)[1].lower()
+    for what, whose, suffixes, _p in KNOWN:
+        if suffix in suffixes:
+            return f"{what} ({suffix.upper()[1:]}): ucsio does not read {whose} files yet"
+    text = head.lstrip("\ufeff \t\r\n")
+    for what, whose, pattern in _HEADS:
+        if pattern.match(text):
+            return f"{what}: ucsio does not read {whose} files yet"
+    return None
+
+
+def is_fanuc_backup(names) -> bool:
+    """Whether a folder holding ``names`` is a FANUC backup: a SYSFRAME.VA
+    and at least one .LS program."""
+    low = [n.lower() for n in names]
+    return "sysframe.va" in low and any(n.endswith(".ls") for n in low)
+
+
+def fanuc_data(name: str, head: str, folder_names) -> str | None:
+    """Why a ``.dat`` in a folder holding ``folder_names`` is not read: it
+    is a FANUC backup's and its text is not KRL. None for any other file."""
+    if not name.lower().endswith(".dat") or not is_fanuc_backup(folder_names):
+        return None
+    return None if _KRL.search(head) else FANUC_DATA
+
+
+def beside(path: str) -> list[str]:
+    """The names in ``path``'s folder (none where it cannot be listed)."""
+    try:
+        return os.listdir(os.path.dirname(path) or ".")
+    except OSError:
+        return []
