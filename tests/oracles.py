@@ -2,11 +2,19 @@
 
 A patch replaces a frame's numbers and, where a value needs the other sign,
 deletes a sign that a comment or line break parts from its digits
-(frames.Number.signs). Everything else — comments, line breaks, spacing,
+(frames.Number.signs); in a TP program a negative value's one pair of
+parentheses comes and goes with its sign (``(-4)`` -> ``5``, the pendant's
+form). Everything else — comments, line breaks, spacing,
 other frames — stays byte for byte."""
 from __future__ import annotations
 
+import re
+
 from ucsio.geometry.frames import Frame
+
+# one pair of parentheses right around a number (its blanks inside): a TP
+# program's negative literal; a deeper pair stays and must stay
+_PAIR = re.compile("\\([ \t]*\0[ \t]*\\)")
 
 
 def skeleton(text: str, frames: list[Frame]) -> str:
@@ -26,7 +34,7 @@ def skeleton(text: str, frames: list[Frame]) -> str:
         out.append(mark)
         pos = end
     out.append(text[pos:])
-    return "".join(out)
+    return _PAIR.sub("\0", "".join(out))
 
 
 def only_numbers_changed(old_text: str, old_frames: list[Frame], new_text: str,

@@ -384,3 +384,22 @@ def test_a_patch_reads_back_as_any_frame_and_changes_only_its_numbers(x, y, z, w
     allowed = {3 + 8, 4 + 8, 5 + 8, 6 + 8, 7 + 8, 8 + 8} if name.endswith(".ls") else \
         {cf.frame("UF1").line + 2, cf.frame("UF1").line + 3}
     assert lines <= allowed, (lines, allowed)
+
+
+def test_a_value_that_changes_sign_keeps_the_program_s_form_and_nothing_else():
+    """(-1100.3) patched to a positive value loses the pair of parentheses
+    that only its sign needed (the pendant's form), and nothing else moves;
+    the fuzz oracle says so too (it once took this for damage)."""
+    from oracles import only_numbers_changed
+    from ucsio.review.patch import patch_frame
+
+    src = corpus_file("fanuc", UB + "tooldataub10200rbt01.ls")
+    cf = load(src)
+    res = patch_frame(cf, "UT1", Pose.from_wpr(1.0, 884.868, 3.0, 180, 0, -90),
+                      measured=False, check_siblings=False)
+    new = Document(res.new_bytes, str(src))
+    text = new.text
+    assert "PR[16,1]=1    ;" in text and "PR[16,2]=884.868    ;" in text
+    assert "PR[16,7]" not in text and text.count("(") == cf.document.text.count("(") - 2
+    again = parse(new)
+    assert only_numbers_changed(cf.document.text, [cf.frame("UT1")], text, [again.frame("UT1")])
