@@ -17,7 +17,8 @@ def skeleton(text: str, frames: list[Frame]) -> str:
     cuts = []
     for f in frames:
         for n in f.numbers.values():
-            cuts.append((n.span.start, n.span.end, "\0"))
+            span = n.span.start, n.span.end
+            cuts.append((*(_with_parentheses(text, *span) if f.vendor == "fanuc" else span), "\0"))
             cuts += [(s.start, s.end, "") for s in n.signs]
     out, pos = [], 0
     for start, end, mark in sorted(cuts):
@@ -27,6 +28,20 @@ def skeleton(text: str, frames: list[Frame]) -> str:
         pos = end
     out.append(text[pos:])
     return "".join(out)
+
+
+def _with_parentheses(text: str, start: int, end: int) -> tuple[int, int]:
+    """A TP program's value with the pair of parentheses around it: the
+    patch writes a negative value in parentheses and a positive one without
+    (``(-4)`` -> ``5``), so the pair belongs to the number."""
+    before, after = start, end
+    while before > 0 and text[before - 1] in " \t":
+        before -= 1
+    while after < len(text) and text[after] in " \t":
+        after += 1
+    if before > 0 and text[before - 1] == "(" and text[after:after + 1] == ")":
+        return before - 1, after + 1
+    return start, end
 
 
 def only_numbers_changed(old_text: str, old_frames: list[Frame], new_text: str,

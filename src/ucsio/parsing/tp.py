@@ -49,10 +49,15 @@ _SECTION_LINE = regex.lazy(r"^[ \t\f\r]*/(?:PROG|MN|POS|END)(?![A-Za-z0-9_])", r
 _POS_LINE = regex.lazy(r"^[ \t\f\r]*/POS(?![A-Za-z0-9_])[^\n]*", re.M)
 _END_LINE = regex.lazy(r"^[ \t\f\r]*/END(?![A-Za-z0-9_])", re.M)
 _LITERAL_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
+# a number with an exponent, in parentheses or not, ending the statement: 1e39 ;  (-4E+40) ;
+_EXPONENT_NUMBER = regex.lazy(r"[( \t]*([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)[eE][+-]?[0-9]+)"
+                              r"[) \t]*;[ \t\f\r]*\Z")
 # PR[8]=PR[8]-PR[8]: the register zeroed (the value's text, any comments)
 _SELF_MINUS = regex.lazy(r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*-[ \t]*"
                          r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*;[ \t\f\r]*\Z")
 _FRAME_HEAD = regex.lazy(r"U(?:FRAME|TOOL)[ \t]*\[")
+# the end of a motion's attached logic: ------ ;
+_SEPARATOR = regex.lazy(r"-+[ \t]*;\Z")
 _DEFAULT_GROUP = regex.lazy(r"DEFAULT_GROUP[ \t]*=[ \t]*([^;\n]*)")
 ZERO = Number(Span(0, 0), "0", 0.0)     # a component LPOS-LPOS made 0: written nowhere
 
@@ -106,6 +111,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             _parser().recognise(text, "file")
         except Rejected:
             return _whole(doc, text, lark_first=True)
+        _read_positions(doc, text)      # a number no REAL holds is refused there
     return _interpret(doc, _parse(doc, _without_positions(text)))
 
 
@@ -160,6 +166,8 @@ def _interpret(doc: Document, tree: Tree) -> ControllerFile:
                     group = _default_group(m.group(1))
         elif node.data == "mn":
             _main(cf, node, group)
+        elif node.data == "pos":
+            _positions(doc, node)           # a number no REAL holds is refused there
     if tree.children and getattr(tree.children[-1], "type", None) == "LINE":
         tok = tree.children[-1]
         cf.lint(tok.start_pos, "after-end", f"text after /END on its line ({tok.value[:30]!r}): "
@@ -177,27 +185,61 @@ def _default_group(text: str) -> int:
 
 
 def _main(cf: ControllerFile, mn: Tree, group: int) -> None:
-    doc = cf.document
     regs: dict[tuple[int, int], _Register] = {}
-    seen: dict[str, int] = {}
+    seen: dict = {}                     # the frame's name: where it was set last
     for line in mn.children[1:]:
         if not isinstance(line, Tree):
             continue
-        stmt = line.children[1] if len(line.children) > 1 else None
+        if line.data == "text_line":
+            _text_line(cf, line.children[0])
+            continue
+        stmt = _statement(line)
         if isinstance(stmt, Tree) and stmt.data == "pr_set":
             _pr_set(cf, stmt, regs, group)
         elif isinstance(stmt, Tree) and stmt.data == "frame_set":
             fr = _frame_set(cf, stmt, regs, group)
-            key = fr.name.upper()
-            if key in seen:
-                cf.lint(stmt.children[0].start_pos, "duplicate-frame",
-                        f"{fr.name} is set twice (lines {seen[key]} and {fr.line})")
-            else:
-                seen[key] = fr.line
+            _set_again(cf, stmt.children[0].start_pos, fr, seen.get(fr.name.upper()))
+            seen[fr.name.upper()] = fr
             cf.frames.append(fr)
         elif stmt is not None and _FRAME_HEAD.match(stmt.value):
             cf.lint(stmt.start_pos, "unread-frame-set",
                     f"a frame assignment ucsio does not read: {stmt.value[:40]!r}")
+
+
+def _statement(line: Tree):
+    """The statement of ``[n]: statement``: a frame_set or pr_set node, a
+    REST token, or None (an empty line)."""
+    for child in line.children:
+        if isinstance(child, Tree) or child.type == "REST":
+            return child
+    return None
+
+
+def _text_line(cf: ControllerFile, tok) -> None:
+    """A /MN line that is no statement: a motion's logic ends at a line of
+    dashes; any other is kept as it is, and said (a frame assignment there
+    would not be read)."""
+    if _SEPARATOR.match(tok.value):
+        return
+    if _FRAME_HEAD.match(tok.value):
+        cf.lint(tok.start_pos, "unread-frame-set",
+                f"a frame assignment ucsio does not read (no line number): {tok.value[:40]!r}")
+        return
+    cf.lint(tok.start_pos, "unread-line", f"a /MN line that is no numbered statement, kept as "
+                                          f"it is: {tok.value[:40]!r}", severity="info")
+
+
+def _set_again(cf: ControllerFile, at: int, frame, before) -> None:
+    """A frame the program sets a second time: a TP program computes frames
+    so (a register zeroed, then PR[n]=LPOS), so only two literal values
+    that differ warn."""
+    if before is None:
+        return
+    differ = frame.pose is not None and before.pose is not None and frame.pose != before.pose
+    cf.lint(at, "duplicate-frame", f"{frame.name} is set twice (lines {before.line} and "
+                                   f"{frame.line})" + ("" if differ else
+                                                       ": not both literal values that differ"),
+            severity="warning" if differ else "info")
 
 
 def _pr_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int) -> None:
@@ -228,7 +270,9 @@ def _pr_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int) -> None:
     reg = regs.get(key)
     if reg is None:                     # the rest is what the controller holds
         reg = regs[key] = _Register(dict.fromkeys(range(1, 7)), False)
-    reg.values[component] = _literal(value) if value.type == "LITERAL" else None
+    if value.type == "REST":
+        _refuse_huge(cf.document, value)
+    reg.values[component] = _literal(cf.document, value) if value.type == "LITERAL" else None
 
 
 def _whole_value(value, number: int) -> _Register:
@@ -246,12 +290,28 @@ def _whole_value(value, number: int) -> _Register:
     return _Register(dict.fromkeys(range(1, 7)), False)
 
 
-def _literal(tok) -> Number:
+def _literal(doc: Document, tok) -> Number:
     """The number inside a LITERAL token ((-1100.3), ((-29)), 770.299): its
     span without the parentheses, the sign included."""
     m = _LITERAL_NUMBER.search(tok.value)
-    start = tok.start_pos + m.start()
-    return Number(Span(start, start + len(m.group())), m.group(), float(m.group()))
+    return _number(doc, m.group(), tok.start_pos + m.start())
+
+
+def _number(doc: Document, text: str, start: int) -> Number:
+    """A number the program writes; one beyond what a FANUC REAL (float32)
+    holds is refused, as the controller would (400 digits read as inf)."""
+    value = float(text)
+    if not abs(value) <= fanuc.REAL_MAX:
+        raise doc.error(f"number {text[:30]} is out of range for a FANUC REAL (float32)", start)
+    return Number(Span(start, start + len(text)), text, value)
+
+
+def _refuse_huge(doc: Document, tok) -> None:
+    """A value the LITERAL terminal leaves to REST (``1e39``, ``(-4E+40)``):
+    not read, but refused where no REAL holds it."""
+    m = _EXPONENT_NUMBER.match(tok.value)
+    if m is not None:
+        _number(doc, m.group(1), tok.start_pos + m.start(1))
 
 
 def _literal_index(index: Tree):
@@ -326,7 +386,7 @@ def _frame_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int):
 # -- /POS: the taught points ------------------------------------------------------------
 class PointGroup(Value):
     """One motion group of a taught point: ``uf``/``ut`` the frames it was
-    taught in, ``config`` ('N U T, 0, 0, 0', None for joints), ``values``
+    taught in (None for F: never taught, ``untaught``), ``config`` ('N U T, 0, 0, 0', None for joints), ``values``
     {axis (X..R, J1.., E1..): Number, or None for ********} and their
     ``units`` (mm, deg); ``at``, ``uf_at``, ``ut_at``: the offsets of its
     ``GPn``, and of the UF and UT numbers (for file:line:col)."""
@@ -339,6 +399,12 @@ class PointGroup(Value):
         self.group, self.uf, self.ut, self.config = group, uf, ut, config
         self.values, self.units, self.line = values, units, line
         self.at, self.uf_at, self.ut_at = at, uf_at, ut_at
+
+    @property
+    def untaught(self) -> bool:
+        """A position that exists and was never taught: ``UF : F, UT : F``
+        (its values ``********``)."""
+        return self.uf is None or self.ut is None
 
     @property
     def joint(self) -> bool:
@@ -375,8 +441,34 @@ class Point(Value):
 
 
 def positions(doc: Document) -> list[Point]:
-    """The taught points of a program's /POS section, in order (the tree of
-    every byte: a syntax error anywhere is file:line:col)."""
+    """The taught points of a program's /POS section, in order. The
+    program without /POS goes through the grammar (a syntax error anywhere
+    is file:line:col); /POS is read position by position with patterns made
+    of the grammar's own terminals, with no tree: a program of 100,000
+    points is 18 MB. A position the patterns do not take leaves the whole
+    file to the grammar (``positions_whole``), which reads it or says
+    where it is wrong."""
+    text = _lines(doc)
+    if not is_program(text):
+        return []
+    try:
+        _parser().recognise(_without_positions(text), "file")
+    except Rejected:
+        return positions_whole(doc)
+    return _read_positions(doc, text)
+
+
+def _read_positions(doc: Document, text: str) -> list[Point]:
+    """/POS of a program whose other sections the grammar has taken."""
+    try:
+        return _PositionScanner(doc, text).read()
+    except _NotPlain:
+        return positions_whole(doc)
+
+
+def positions_whole(doc: Document) -> list[Point]:
+    """``positions`` from the tree of every byte: the reference the fast
+    reader is held to (tests/test_tp_lines.py)."""
     text = _lines(doc)
     if not is_program(text):
         return []
@@ -397,10 +489,9 @@ def _positions(doc: Document, pos: Tree) -> list[Point]:
                 g = _point_group(doc, c)
                 groups[g.group] = g
             elif c.type == "POINT_COMMENT":
-                comment = c.value[1:].strip()[1:-1]
-        number = int(ch[1].value) if len(ch[1].value) < 10 else -1
-        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups,
-                         ch[0].start_pos))
+                comment = _point_comment(c.value)
+        number = _index_number(doc, ch[1].value, ch[1].start_pos)
+        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups, ch[0].start_pos))
     return out
 
 
@@ -411,12 +502,155 @@ def _point_group(doc: Document, node: Tree) -> PointGroup:
     values, units = {}, {}
     for c in ch[3:]:
         if c.data == "config":
-            config = c.children[0].value[1:-1]
+            config = c.children[1].value[1:-1]
             continue
         axis, value, unit = c.children
         key = axis.value.upper()
-        values[key] = (None if value.type == "STARS" else
-                       Number(Span(value.start_pos, value.end_pos), value.value, float(value.value)))
+        values[key] = None if value.type == "STARS" else _number(doc, value.value, value.start_pos)
         units[key] = unit.value
-    return PointGroup(int(gp.value[2:]), int(uf.value), int(ut.value), config, values, units,
+    return PointGroup(_index_number(doc, gp.value[2:], gp.start_pos + 2),
+                      _frame_number(doc, uf.value, uf.start_pos),
+                      _frame_number(doc, ut.value, ut.start_pos), config, values, units,
                       doc.line_of(gp.start_pos), gp.start_pos, uf.start_pos, ut.start_pos)
+
+
+def _point_comment(text: str) -> str:
+    """``:"App"`` -> App."""
+    return text[1:].strip()[1:-1]
+
+
+def _index_number(doc: Document, digits: str, at: int) -> int:
+    """A point's or group's number as written; digits no controller
+    numbers by are refused, naming the place."""
+    if len(digits) > 9:
+        raise doc.error(f"number {digits[:30]}... has {len(digits)} digits: not a FANUC index", at)
+    return int(digits)
+
+
+def _frame_number(doc: Document, text: str, at: int) -> int | None:
+    """The UF or UT a position was taught in; None for F (untaught)."""
+    return None if text == "F" else _index_number(doc, text, at)
+
+
+class _NotPlain(Exception):
+    """Text the fast /POS reader does not take: the grammar decides."""
+
+
+class _PositionScanner:
+    """/POS read position by position, each token matched with the
+    grammar's own terminal patterns (``_position_patterns``) as its lexer
+    would match it, so what this reads is what the tree gives; anything
+    else raises _NotPlain."""
+
+    def __init__(self, doc: Document, text: str):
+        self.doc, self.text = doc, text
+        self.p = _position_patterns()
+
+    def read(self) -> list[Point]:
+        text = self.text
+        pos = _POS_LINE.search(text)
+        if pos is None:
+            return []
+        end = _END_LINE.search(text, pos.end())
+        stop = text.index("/END", end.start())
+        at = self._need(self.p.newline, pos.end()).end()
+        out = []
+        while at < stop:
+            point, at = self._point(at)
+            out.append(point)
+        if at != stop:          # pragma: no cover - a newline ends at a non-blank
+            raise _NotPlain
+        return out
+
+    def _need(self, pattern, at: int):
+        m = pattern.match(self.text, at)
+        if m is None:
+            raise _NotPlain
+        return m
+
+    def _point(self, at: int) -> tuple[Point, int]:
+        doc, p = self.doc, self.p
+        head = self._need(p.head, at)
+        number = _index_number(doc, head.group("number"), head.start("number"))
+        comment = head.group("comment")
+        groups = {}
+        at = head.end()
+        while True:
+            g = p.group.match(self.text, at)
+            if g is None:
+                break
+            group, at = self._group(g)
+            groups[group.group] = group
+        if not groups:
+            raise _NotPlain
+        at = self._need(p.tail, at).end()
+        return Point(number, None if comment is None else _point_comment(comment),
+                     doc.line_of(head.start("p")), groups, head.start("p")), at
+
+    def _group(self, g) -> tuple[PointGroup, int]:
+        doc, p, text = self.doc, self.p, self.text
+        values, units = {}, {}
+        at = g.end()
+        c = p.component.match(text, at)
+        while c is not None:
+            value, key = c.group("value"), c.group("axis").upper()
+            values[key] = None if value[0] == "*" else _number(doc, value, c.start("value"))
+            units[key] = c.group("unit")
+            sep = p.comma.match(text, c.end())
+            if sep is None:         # the last one, without a trailing ","
+                at = p.newline_maybe.match(text, c.end()).end()
+                break
+            at = sep.end()          # "," and a line end: another component, or none
+            c = p.component.match(text, at)
+        config = g.group("config")
+        gp_at = g.start("gp")
+        group = PointGroup(_index_number(doc, g.group("gp")[2:], gp_at + 2),
+                           _frame_number(doc, g.group("uf"), g.start("uf")),
+                           _frame_number(doc, g.group("ut"), g.start("ut")),
+                           None if config is None else config[1:-1], values, units,
+                           doc.line_of(gp_at), gp_at, g.start("uf"), g.start("ut"))
+        return group, at
+
+
+class _Patterns:
+    __slots__ = ("newline", "newline_maybe", "head", "group", "component", "comma", "tail")
+
+
+_PATTERNS = None
+
+
+def _position_patterns() -> _Patterns:
+    """The tokens of a /POS position, from grammars/tp.lark's terminals,
+    each atomic (matched as the lexer matches it, never given back), WS
+    between any two, _NL only where the grammar has it."""
+    global _PATTERNS
+    if _PATTERNS is None:
+        from .lalr import atomic
+        t = _parser().terminals
+        gap = f"{atomic(t['WS'])}?+"
+        nl = f"(?:{gap}{atomic(t['_NL'])})?+"
+
+        def tokens(*parts: str) -> str:
+            return gap.join(parts)
+        frame_no = f"{atomic(t['INT'])}|{atomic(t['UNTAUGHT'])}"
+        p = _Patterns()
+        p.newline = regex.compile(atomic(t["_NL"]))
+        p.head = regex.compile(tokens(f"(?P<p>{atomic(t['P'])})", r"\[",
+                                      f"(?P<number>{atomic(t['INT'])})",
+                                      f"(?P<comment>{atomic(t['POINT_COMMENT'])})?+", r"\]",
+                                      r"\{") + nl)
+        p.group = regex.compile(
+            gap + tokens(f"(?P<gp>{atomic(t['GP'])})", ":") + nl
+            + gap + tokens("UF", ":", f"(?P<uf>{frame_no})", ",") + nl
+            + gap + tokens("UT", ":", f"(?P<ut>{frame_no})", ",") + nl
+            + f"(?:{gap}" + tokens(atomic(t["CONFIG_WORD"]), ":",
+                                   f"(?P<config>{atomic(t['CONFIG_STRING'])})", ",") + nl + ")?+")
+        p.component = regex.compile(gap + tokens(
+            f"(?P<axis>{atomic(t['AXIS'])})", "=",
+            f"(?P<value>{atomic(t['NUMBER'])}|{atomic(t['STARS'])})",
+            f"(?P<unit>{atomic(t['UNIT'])})"))
+        p.comma = regex.compile(gap + "," + nl)
+        p.newline_maybe = regex.compile(nl)
+        p.tail = regex.compile(gap + tokens(r"\}", ";") + gap + atomic(t["_NL"]))
+        _PATTERNS = p
+    return _PATTERNS

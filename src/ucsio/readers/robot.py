@@ -207,7 +207,8 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
             rp.problem = doc.error(f"{p.name}: no group 1 (GP1) position ({others}): not a "
                                    "pose of the robot's flange", p.at)
             continue
-        why = _not_cartesian(g.values, g.joint)
+        why = ("never taught (UF : F, UT : F): the position has no values" if g.untaught
+               else _not_cartesian(g.values, g.joint))
         if why:
             rp.problem = doc.error(f"{p.name}: {why}", g.at)
             continue
