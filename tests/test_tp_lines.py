@@ -236,7 +236,7 @@ def test_positions_build_no_tree(monkeypatch):
 # and small damage; the fast reader must give the grammar's points, or the
 # grammar's own error.
 GAP = st.sampled_from(["", " ", "\t", "  \t", "\f"])        # a bare CR ends a line
-NL = st.sampled_from(["\n", "\r\n", "\n\n", "\n\t", "\n \n  "])
+NL = st.sampled_from(["\n", "\r\n", "\n\n", "\n\t", "\n \n  ", "\r", "\r\r\n", "\r\r"])
 AXIS_GAP = st.sampled_from(["", " ", "\t"])        # AXIS looks ahead to "=" over these only
 UNIT = st.sampled_from(["mm", "deg"])
 NUM = st.sampled_from(["0.000", "-.500", "1200.5", "1e3", "-2.5E-2", "********", "+7", "3.",

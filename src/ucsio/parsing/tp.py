@@ -108,11 +108,38 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         return cf
     if full:
         try:
-            _parser().recognise(text, "file")
+            _recognise(text)
         except Rejected:
             return _whole(doc, text, lark_first=True)
-        _read_positions(doc, text)      # a number no REAL holds is refused there
+        for _ in _read_positions(doc, text):    # a number no REAL holds is refused there
+            pass
     return _interpret(doc, _parse(doc, _without_positions(text)))
+
+
+def _recognise(text: str) -> None:
+    """Every byte of ``text`` through the grammar, without a tree; a run of
+    plain statement lines (``n:`` and an instruction that is no PR or frame
+    assignment: a path program's motion lines) goes in as one TEXT line,
+    which the parser takes alike. Rejected if not a TP program."""
+    global _SHORTCUTS
+    if _SHORTCUTS is None:
+        plain = r"[0-9]+[ \t\f\r]*:(?![ \t\f\r]*[UP])[^\n]*+"
+        _SHORTCUTS = {"LINENO": (regex.compile(f"{plain}(?:\\n[ \\t\\f\\r\\n]*+{plain})*+"),
+                                 "TEXT")}
+    _parser().recognise(text, "file", _SHORTCUTS)
+
+
+_SHORTCUTS = None
+
+
+def _without_position_lines(text: str) -> str:
+    """``text`` without the lines between /POS and /END (its offsets are
+    not the file's: for recognition only)."""
+    pos = _POS_LINE.search(text)
+    if pos is None:
+        return text
+    end = _END_LINE.search(text, pos.end())
+    return text[:pos.end()] + "\n" + (text[end.start():] if end is not None else "")
 
 
 def _without_positions(text: str) -> str:
@@ -427,13 +454,14 @@ class PointGroup(Value):
 
 class Point(Value):
     """A position of /POS: ``P[12]`` with its comment and its groups
-    ({group number: PointGroup}); ``at`` the offset of its ``P``."""
+    ({group number: PointGroup}); ``at`` the offset of its ``P``, ``col``
+    its column on ``line``."""
 
-    __slots__ = ("number", "comment", "line", "groups", "at")
+    __slots__ = ("number", "comment", "line", "groups", "at", "col")
 
-    def __init__(self, number, comment, line, groups, at=None):
+    def __init__(self, number, comment, line, groups, at=None, col=None):
         self.number, self.comment, self.line, self.groups = number, comment, line, groups
-        self.at = at
+        self.at, self.col = at, col
 
     @property
     def name(self) -> str:
@@ -441,29 +469,39 @@ class Point(Value):
 
 
 def positions(doc: Document) -> list[Point]:
-    """The taught points of a program's /POS section, in order. The
-    program without /POS goes through the grammar (a syntax error anywhere
-    is file:line:col); /POS is read position by position with patterns made
-    of the grammar's own terminals, with no tree: a program of 100,000
-    points is 18 MB. A position the patterns do not take leaves the whole
-    file to the grammar (``positions_whole``), which reads it or says
-    where it is wrong."""
+    """The taught points of a program's /POS section, in order
+    (``iter_positions``)."""
+    return list(iter_positions(doc))
+
+
+def iter_positions(doc: Document):
+    """The taught points of a program's /POS section, one at a time (a
+    reader that keeps only what it needs of each holds no list of 100,000).
+    The program without /POS goes through the grammar first (a syntax error
+    anywhere is file:line:col); /POS is read position by position with
+    patterns made of the grammar's own terminals, with no tree. A position
+    the patterns do not take leaves the file to the grammar
+    (``positions_whole``), which reads it alike or says where it is wrong."""
     text = _lines(doc)
     if not is_program(text):
-        return []
+        return
     try:
-        _parser().recognise(_without_positions(text), "file")
+        _recognise(_without_position_lines(text))
     except Rejected:
-        return positions_whole(doc)
-    return _read_positions(doc, text)
+        yield from positions_whole(doc)
+        return
+    yield from _read_positions(doc, text)
 
 
-def _read_positions(doc: Document, text: str) -> list[Point]:
+def _read_positions(doc: Document, text: str):
     """/POS of a program whose other sections the grammar has taken."""
+    done = 0
     try:
-        return _PositionScanner(doc, text).read()
+        for point in _PositionScanner(doc, text).read():
+            yield point
+            done += 1
     except _NotPlain:
-        return positions_whole(doc)
+        yield from positions_whole(doc)[done:]      # the same points, or the grammar's error
 
 
 def positions_whole(doc: Document) -> list[Point]:
@@ -491,7 +529,9 @@ def _positions(doc: Document, pos: Tree) -> list[Point]:
             elif c.type == "POINT_COMMENT":
                 comment = _point_comment(c.value)
         number = _index_number(doc, ch[1].value, ch[1].start_pos)
-        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups, ch[0].start_pos))
+        at = ch[0].start_pos
+        line, col = doc.line_col(at)
+        out.append(Point(number, comment, line, groups, at, col))
     return out
 
 
@@ -545,22 +585,55 @@ class _PositionScanner:
     def __init__(self, doc: Document, text: str):
         self.doc, self.text = doc, text
         self.p = _position_patterns()
+        self.counted = (0, 1)           # (offset, its line): lines counted as the reader goes
 
-    def read(self) -> list[Point]:
+    def line(self, at: int) -> int:
+        """The line of ``at`` (offsets only grow): the LFs of the grammar's
+        copy of the text are the document's line ends, and the document's
+        table of 800,000 line starts is not built."""
+        offset, line = self.counted
+        line += self.text.count("\n", offset, at)
+        self.counted = (at, line)
+        return line
+
+    def col(self, at: int) -> int:
+        return at - self.text.rfind("\n", 0, at)
+
+    def read(self):
         text = self.text
         pos = _POS_LINE.search(text)
         if pos is None:
-            return []
+            return
         end = _END_LINE.search(text, pos.end())
         stop = text.index("/END", end.start())
         at = self._need(self.p.newline, pos.end()).end()
-        out = []
         while at < stop:
-            point, at = self._point(at)
-            out.append(point)
+            m = self.p.plain.match(text, at)
+            point, at = self._plain(m) if m is not None else self._point(at)
+            yield point
         if at != stop:          # pragma: no cover - a newline ends at a non-blank
             raise _NotPlain
-        return out
+
+    def _plain(self, m) -> tuple[Point, int]:
+        """A position of one group with X Y Z W P R and nothing else, the
+        way a controller writes most: one match (``_Patterns.plain``)."""
+        doc = self.doc
+        p_at = m.start("p")
+        p_line, p_col = self.line(p_at), self.col(p_at)
+        values, units = {}, {}
+        for key in _CARTESIAN:
+            value = m.group(key)
+            values[key] = None if value[0] == "*" else _number(doc, value, m.start(key))
+            units[key] = _UNITS[m.group(key + "u")]
+        gp_at, config, comment = m.start("gp"), m.group("config"), m.group("comment")
+        group = PointGroup(_index_number(doc, m.group("gp")[2:], gp_at + 2),
+                           _frame_number(doc, m.group("uf"), m.start("uf")),
+                           _frame_number(doc, m.group("ut"), m.start("ut")),
+                           None if config is None else config[1:-1], values, units,
+                           self.line(gp_at), gp_at, m.start("uf"), m.start("ut"))
+        return Point(_index_number(doc, m.group("number"), m.start("number")),
+                     None if comment is None else _point_comment(comment), p_line,
+                     {group.group: group}, p_at, p_col), m.end()
 
     def _need(self, pattern, at: int):
         m = pattern.match(self.text, at)
@@ -571,6 +644,8 @@ class _PositionScanner:
     def _point(self, at: int) -> tuple[Point, int]:
         doc, p = self.doc, self.p
         head = self._need(p.head, at)
+        p_at = head.start("p")
+        p_line, p_col = self.line(p_at), self.col(p_at)
         number = _index_number(doc, head.group("number"), head.start("number"))
         comment = head.group("comment")
         groups = {}
@@ -585,7 +660,7 @@ class _PositionScanner:
             raise _NotPlain
         at = self._need(p.tail, at).end()
         return Point(number, None if comment is None else _point_comment(comment),
-                     doc.line_of(head.start("p")), groups, head.start("p")), at
+                     p_line, groups, p_at, p_col), at
 
     def _group(self, g) -> tuple[PointGroup, int]:
         doc, p, text = self.doc, self.p, self.text
@@ -608,12 +683,17 @@ class _PositionScanner:
                            _frame_number(doc, g.group("uf"), g.start("uf")),
                            _frame_number(doc, g.group("ut"), g.start("ut")),
                            None if config is None else config[1:-1], values, units,
-                           doc.line_of(gp_at), gp_at, g.start("uf"), g.start("ut"))
+                           self.line(gp_at), gp_at, g.start("uf"), g.start("ut"))
         return group, at
 
 
+_CARTESIAN = ("X", "Y", "Z", "W", "P", "R")
+_UNITS = {"mm": "mm", "deg": "deg"}     # one string each, however many points
+
+
 class _Patterns:
-    __slots__ = ("newline", "newline_maybe", "head", "group", "component", "comma", "tail")
+    __slots__ = ("newline", "newline_maybe", "head", "group", "component", "comma", "tail",
+                 "plain")
 
 
 _PATTERNS = None
@@ -635,22 +715,30 @@ def _position_patterns() -> _Patterns:
         frame_no = f"{atomic(t['INT'])}|{atomic(t['UNTAUGHT'])}"
         p = _Patterns()
         p.newline = regex.compile(atomic(t["_NL"]))
-        p.head = regex.compile(tokens(f"(?P<p>{atomic(t['P'])})", r"\[",
-                                      f"(?P<number>{atomic(t['INT'])})",
-                                      f"(?P<comment>{atomic(t['POINT_COMMENT'])})?+", r"\]",
-                                      r"\{") + nl)
-        p.group = regex.compile(
-            gap + tokens(f"(?P<gp>{atomic(t['GP'])})", ":") + nl
-            + gap + tokens("UF", ":", f"(?P<uf>{frame_no})", ",") + nl
-            + gap + tokens("UT", ":", f"(?P<ut>{frame_no})", ",") + nl
-            + f"(?:{gap}" + tokens(atomic(t["CONFIG_WORD"]), ":",
-                                   f"(?P<config>{atomic(t['CONFIG_STRING'])})", ",") + nl + ")?+")
+        head = tokens(f"(?P<p>{atomic(t['P'])})", r"\[", f"(?P<number>{atomic(t['INT'])})",
+                      f"(?P<comment>{atomic(t['POINT_COMMENT'])})?+", r"\]", r"\{") + nl
+        p.head = regex.compile(head)
+        group = (gap + tokens(f"(?P<gp>{atomic(t['GP'])})", ":") + nl
+                 + gap + tokens("UF", ":", f"(?P<uf>{frame_no})", ",") + nl
+                 + gap + tokens("UT", ":", f"(?P<ut>{frame_no})", ",") + nl
+                 + f"(?:{gap}" + tokens(atomic(t["CONFIG_WORD"]), ":",
+                                        f"(?P<config>{atomic(t['CONFIG_STRING'])})", ",") + nl
+                 + ")?+")
+        p.group = regex.compile(group)
         p.component = regex.compile(gap + tokens(
             f"(?P<axis>{atomic(t['AXIS'])})", "=",
             f"(?P<value>{atomic(t['NUMBER'])}|{atomic(t['STARS'])})",
             f"(?P<unit>{atomic(t['UNIT'])})"))
         p.comma = regex.compile(gap + "," + nl)
         p.newline_maybe = regex.compile(nl)
-        p.tail = regex.compile(gap + tokens(r"\}", ";") + gap + atomic(t["_NL"]))
+        tail = gap + tokens(r"\}", ";") + gap + atomic(t["_NL"])
+        p.tail = regex.compile(tail)
+        # the common position in one match: one group, X Y Z W P R in order
+        cartesian = (gap + f",{nl}{gap}").join(
+            tokens(f"{axis}(?=[ \t]*=)", "=", f"(?P<{axis}>{atomic(t['NUMBER'])}|"
+                   f"{atomic(t['STARS'])})", f"(?P<{axis}u>{atomic(t['UNIT'])})")
+            for axis in _CARTESIAN)
+        p.plain = regex.compile(head + group + gap + cartesian + f"(?:{gap},)?+" + nl
+                                + tail)
         _PATTERNS = p
     return _PATTERNS
