@@ -19,13 +19,20 @@ through an indirect index (``PR[R[3]]=``, any register then), unknown. A
 frame whose six values are not all known is listed without them, with the
 ``not-literal`` lint; so is one set through an indirect index
 (``UFRAME[R[9]]=PR[16]``), named ``UF[R[9]]``. Jumps and calls are not
-followed: the values are those the lines above give.
+followed: the values are those the lines above give. Any other /MN line
+is kept as it is (a motion's options and attached logic, a generated line
+without its number, a line ucsio does not understand): only the header,
+/POS and the assignments must parse. A frame set again is how a program
+computes it: ``duplicate-frame`` warns only for two literal values that
+differ. A literal no FANUC REAL holds is refused, file:line:col.
 
 Two ways through the grammar, as for the other languages: ``full=True``
 (``check``) recognises every byte first; the fast path parses the program
 with its /POS section blanked (a generated path program holds thousands of
 points and no frame). ``positions(doc)`` reads /POS (the taught points,
-with their UF, UT and CONFIG).
+with their UF, UT and CONFIG; an untaught one with neither, ``UF : F``)
+position by position with patterns made of the grammar's terminals, no
+tree; ``positions_whole`` is the grammar's reading it is held to.
 
 A ``.ls`` that is not a TP program (the controller's logs share the suffix:
 ``errall.ls``, ``logbook.ls``) is listed as such, with no frames: a file is
@@ -36,6 +43,7 @@ from __future__ import annotations
 
 import re
 
+from ..errors import UcsioError
 from ..geometry.frames import Number
 from ..values import Value
 from . import fanuc, regex
@@ -500,8 +508,10 @@ def _read_positions(doc: Document, text: str):
         for point in _PositionScanner(doc, text).read():
             yield point
             done += 1
-    except _NotPlain:
-        yield from positions_whole(doc)[done:]      # the same points, or the grammar's error
+    except (_NotPlain, UcsioError):
+        # the same points, or the grammar's first error (a syntax error
+        # after a number no REAL holds is the one the tree reports)
+        yield from positions_whole(doc)[done:]
 
 
 def positions_whole(doc: Document) -> list[Point]:
