@@ -86,6 +86,19 @@ def test_an_instruction_line_never_makes_a_program_unreadable(tmp_path, line):
     assert load_both(p).document.to_bytes() == first.encode()
 
 
+def test_a_header_section_named_pos_is_not_the_positions(tmp_path):
+    """Found by fuzzing: the header's `/POS` section is no /POS: the
+    positions open at the first /POS line after /MN."""
+    p = tmp_path / "t.ls"
+    p.write_text("/PROG  T\n/ATTR\n/POS\nOWNER\t\t= MNEDITOR;\n/MN\n   1:  PR[5]=LPOS-LPOS    ;\n"
+                 "   2:  UFRAME[3]=PR[5] ;\n/POS\n" + position(1, [(1, 0, 0, (1, 2, 3, 0, 0, 0))])
+                 + "\r\n/END\n")
+    assert [f.name for f in load_both(p).frames] == ["UF3"]
+    doc = Document.read(p)
+    assert [x.name for x in tp.positions(doc)] == ["P[1]"] == [
+        x.name for x in tp.positions_whole(doc)]
+
+
 def test_a_line_without_its_number_is_an_info_lint(capsys):
     path = FANUC / "no_line_number.ls"
     cf = load_both(path)

@@ -54,6 +54,7 @@ from .lalr import Rejected, Tree
 START = ("file",)
 AXES = fanuc.COMPONENTS
 _SECTION_LINE = regex.lazy(r"^[ \t\f\r]*/(?:PROG|MN|POS|END)(?![A-Za-z0-9_])", re.M)
+_MN_LINE = regex.lazy(r"^[ \t\f\r]*/MN(?![A-Za-z0-9_])", re.M)
 _POS_LINE = regex.lazy(r"^[ \t\f\r]*/POS(?![A-Za-z0-9_])[^\n]*", re.M)
 _END_LINE = regex.lazy(r"^[ \t\f\r]*/END(?![A-Za-z0-9_])", re.M)
 _LITERAL_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
@@ -140,10 +141,18 @@ def _recognise(text: str) -> None:
 _SHORTCUTS = None
 
 
+def _pos_line(text: str):
+    """The match of the /POS line that opens the positions: the first after
+    /MN (a header section may be named /POS, and /MN's lines never begin
+    with it)."""
+    mn = _MN_LINE.search(text)
+    return _POS_LINE.search(text, mn.end()) if mn is not None else None
+
+
 def _without_position_lines(text: str) -> str:
     """``text`` without the lines between /POS and /END (its offsets are
     not the file's: for recognition only)."""
-    pos = _POS_LINE.search(text)
+    pos = _pos_line(text)
     if pos is None:
         return text
     end = _END_LINE.search(text, pos.end())
@@ -152,7 +161,7 @@ def _without_position_lines(text: str) -> str:
 
 def _without_positions(text: str) -> str:
     """``text`` with the lines between /POS and /END blanked (same length)."""
-    pos = _POS_LINE.search(text)
+    pos = _pos_line(text)
     if pos is None:
         return text
     end = _END_LINE.search(text, pos.end())
@@ -611,7 +620,7 @@ class _PositionScanner:
 
     def read(self):
         text = self.text
-        pos = _POS_LINE.search(text)
+        pos = _pos_line(text)
         if pos is None:
             return
         end = _END_LINE.search(text, pos.end())
