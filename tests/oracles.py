@@ -21,7 +21,7 @@ def skeleton(text: str, frames: list[Frame]) -> str:
             cuts.append((*(_with_parentheses(text, *span) if f.vendor == "fanuc" else span), "\0"))
             cuts += [(s.start, s.end, "") for s in n.signs]
     out, pos = [], 0
-    for start, end, mark in sorted(cuts):
+    for start, end, mark in sorted(set(cuts)):     # two settings of one register: one cut
         assert start >= pos, "overlapping number spans"
         out.append(text[pos:start].rstrip(" \t") if mark else text[pos:start])
         out.append(mark)
