@@ -8,13 +8,7 @@ form). Everything else — comments, line breaks, spacing,
 other frames — stays byte for byte."""
 from __future__ import annotations
 
-import re
-
 from ucsio.geometry.frames import Frame
-
-# one pair of parentheses right around a number (its blanks inside): a TP
-# program's negative literal; a deeper pair stays and must stay
-_PAIR = re.compile("\\([ \t]*\0[ \t]*\\)")
 
 
 def skeleton(text: str, frames: list[Frame]) -> str:
@@ -25,16 +19,31 @@ def skeleton(text: str, frames: list[Frame]) -> str:
     cuts = []
     for f in frames:
         for n in f.numbers.values():
-            cuts.append((n.span.start, n.span.end, "\0"))
+            span = n.span.start, n.span.end
+            cuts.append((*(_with_parentheses(text, *span) if f.vendor == "fanuc" else span), "\0"))
             cuts += [(s.start, s.end, "") for s in n.signs]
     out, pos = [], 0
-    for start, end, mark in sorted(cuts):
+    for start, end, mark in sorted(set(cuts)):     # two settings of one register: one cut
         assert start >= pos, "overlapping number spans"
         out.append(text[pos:start].rstrip(" \t") if mark else text[pos:start])
         out.append(mark)
         pos = end
     out.append(text[pos:])
-    return _PAIR.sub("\0", "".join(out))
+    return "".join(out)
+
+
+def _with_parentheses(text: str, start: int, end: int) -> tuple[int, int]:
+    """A TP program's value with the pair of parentheses around it: the
+    patch writes a negative value in parentheses and a positive one without
+    (``(-4)`` -> ``5``), so the pair belongs to the number."""
+    before, after = start, end
+    while before > 0 and text[before - 1] in " \t":
+        before -= 1
+    while after < len(text) and text[after] in " \t":
+        after += 1
+    if before > 0 and text[before - 1] == "(" and text[after:after + 1] == ")":
+        return before - 1, after + 1
+    return start, end
 
 
 def only_numbers_changed(old_text: str, old_frames: list[Frame], new_text: str,

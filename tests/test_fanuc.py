@@ -369,7 +369,7 @@ BAD = [
     ("bad_number.va", 4, 23, "malformed number '12.3.4'", True),
     ("not_a_listing.va", 1, 1, "expected a record", True),
     ("no_end.ls", 8, 1, "unexpected end of file; expected /END", True),
-    ("no_line_number.ls", 6, 3, "unexpected 'UTOOL_NUM=1 ;'", True),
+    ("broken_frame_set.ls", 6, 22, "unexpected end of line; expected PR[...]", True),
     ("broken_position.ls", 10, 25, "not a FANUC TP program: unexpected '= 200.000", False),
 ]
 

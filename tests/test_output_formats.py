@@ -423,7 +423,7 @@ CODES_EVER = [
     "unknown-component", "not-a-number", "missing-component", "label-too-long", "label-quote",
     "base-not-world",
     "not-a-frame-array", "group-mismatch", "out-of-range", "unread-frame-set", "label-source",
-    "after-end",
+    "after-end", "unread-line",
     "syntax-error", "unreadable", "round-trip",
 ]
 

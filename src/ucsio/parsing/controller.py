@@ -59,6 +59,7 @@ LINT_CODES = {
     "label-source": "info: frame.dg or FRAMEVAR.VA beside a sysframe.va could not be read; "
                     "frames listed without their comments",
     "after-end": "info: text after a program's /END on its line",
+    "unread-line": "info: a program's /MN line that is no numbered statement, kept as it is",
 }
 
 # Findings about a whole file, not a lint: every output format of check names

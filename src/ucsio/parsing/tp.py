@@ -19,13 +19,20 @@ through an indirect index (``PR[R[3]]=``, any register then), unknown. A
 frame whose six values are not all known is listed without them, with the
 ``not-literal`` lint; so is one set through an indirect index
 (``UFRAME[R[9]]=PR[16]``), named ``UF[R[9]]``. Jumps and calls are not
-followed: the values are those the lines above give.
+followed: the values are those the lines above give. Any other /MN line
+is kept as it is (a motion's options and attached logic, a generated line
+without its number, a line ucsio does not understand): only the header,
+/POS and the assignments must parse. A frame set again is how a program
+computes it: ``duplicate-frame`` warns only for two literal values that
+differ. A literal no FANUC REAL holds is refused, file:line:col.
 
 Two ways through the grammar, as for the other languages: ``full=True``
 (``check``) recognises every byte first; the fast path parses the program
 with its /POS section blanked (a generated path program holds thousands of
 points and no frame). ``positions(doc)`` reads /POS (the taught points,
-with their UF, UT and CONFIG).
+with their UF, UT and CONFIG; an untaught one with neither, ``UF : F``)
+position by position with patterns made of the grammar's terminals, no
+tree; ``positions_whole`` is the grammar's reading it is held to.
 
 A ``.ls`` that is not a TP program (the controller's logs share the suffix:
 ``errall.ls``, ``logbook.ls``) is listed as such, with no frames: a file is
@@ -36,6 +43,7 @@ from __future__ import annotations
 
 import re
 
+from ..errors import UcsioError
 from ..geometry.frames import Number
 from ..values import Value
 from . import fanuc, regex
@@ -46,13 +54,19 @@ from .lalr import Rejected, Tree
 START = ("file",)
 AXES = fanuc.COMPONENTS
 _SECTION_LINE = regex.lazy(r"^[ \t\f\r]*/(?:PROG|MN|POS|END)(?![A-Za-z0-9_])", re.M)
+_MN_LINE = regex.lazy(r"^[ \t\f\r]*/MN(?![A-Za-z0-9_])", re.M)
 _POS_LINE = regex.lazy(r"^[ \t\f\r]*/POS(?![A-Za-z0-9_])[^\n]*", re.M)
 _END_LINE = regex.lazy(r"^[ \t\f\r]*/END(?![A-Za-z0-9_])", re.M)
 _LITERAL_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")
+# a number with an exponent, in parentheses or not, ending the statement: 1e39 ;  (-4E+40) ;
+_EXPONENT_NUMBER = regex.lazy(r"[( \t]*([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)[eE][+-]?[0-9]+)"
+                              r"[) \t]*;[ \t\f\r]*\Z")
 # PR[8]=PR[8]-PR[8]: the register zeroed (the value's text, any comments)
 _SELF_MINUS = regex.lazy(r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*-[ \t]*"
                          r"PR\[[ \t]*([0-9]+)[ \t]*(?::[^\]\n]*)?\][ \t]*;[ \t\f\r]*\Z")
 _FRAME_HEAD = regex.lazy(r"U(?:FRAME|TOOL)[ \t]*\[")
+# the end of a motion's attached logic: ------ ;
+_SEPARATOR = regex.lazy(r"-+[ \t]*;\Z")
 _DEFAULT_GROUP = regex.lazy(r"DEFAULT_GROUP[ \t]*=[ \t]*([^;\n]*)")
 ZERO = Number(Span(0, 0), "0", 0.0)     # a component LPOS-LPOS made 0: written nowhere
 
@@ -103,15 +117,51 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         return cf
     if full:
         try:
-            _parser().recognise(text, "file")
+            _recognise(text)
         except Rejected:
             return _whole(doc, text, lark_first=True)
+        for _ in _read_positions(doc, text):    # a number no REAL holds is refused there
+            pass
     return _interpret(doc, _parse(doc, _without_positions(text)))
+
+
+def _recognise(text: str) -> None:
+    """Every byte of ``text`` through the grammar, without a tree; a run of
+    plain statement lines (``n:`` and an instruction that is no PR or frame
+    assignment: a path program's motion lines) goes in as one TEXT line,
+    which the parser takes alike. Rejected if not a TP program."""
+    global _SHORTCUTS
+    if _SHORTCUTS is None:
+        plain = r"[0-9]+[ \t\f\r]*:(?![ \t\f\r]*[UP])[^\n]*+"
+        _SHORTCUTS = {"LINENO": (regex.compile(f"{plain}(?:\\n[ \\t\\f\\r\\n]*+{plain})*+"),
+                                 "TEXT")}
+    _parser().recognise(text, "file", _SHORTCUTS)
+
+
+_SHORTCUTS = None
+
+
+def _pos_line(text: str):
+    """The match of the /POS line that opens the positions: the first after
+    /MN (a header section may be named /POS, and /MN's lines never begin
+    with it)."""
+    mn = _MN_LINE.search(text)
+    return _POS_LINE.search(text, mn.end()) if mn is not None else None
+
+
+def _without_position_lines(text: str) -> str:
+    """``text`` without the lines between /POS and /END (its offsets are
+    not the file's: for recognition only)."""
+    pos = _pos_line(text)
+    if pos is None:
+        return text
+    end = _END_LINE.search(text, pos.end())
+    return text[:pos.end()] + "\n" + (text[end.start():] if end is not None else "")
 
 
 def _without_positions(text: str) -> str:
     """``text`` with the lines between /POS and /END blanked (same length)."""
-    pos = _POS_LINE.search(text)
+    pos = _pos_line(text)
     if pos is None:
         return text
     end = _END_LINE.search(text, pos.end())
@@ -160,6 +210,8 @@ def _interpret(doc: Document, tree: Tree) -> ControllerFile:
                     group = _default_group(m.group(1))
         elif node.data == "mn":
             _main(cf, node, group)
+        elif node.data == "pos":
+            _positions(doc, node)           # a number no REAL holds is refused there
     if tree.children and getattr(tree.children[-1], "type", None) == "LINE":
         tok = tree.children[-1]
         cf.lint(tok.start_pos, "after-end", f"text after /END on its line ({tok.value[:30]!r}): "
@@ -177,27 +229,61 @@ def _default_group(text: str) -> int:
 
 
 def _main(cf: ControllerFile, mn: Tree, group: int) -> None:
-    doc = cf.document
     regs: dict[tuple[int, int], _Register] = {}
-    seen: dict[str, int] = {}
+    seen: dict = {}                     # the frame's name: where it was set last
     for line in mn.children[1:]:
         if not isinstance(line, Tree):
             continue
-        stmt = line.children[1] if len(line.children) > 1 else None
+        if line.data == "text_line":
+            _text_line(cf, line.children[0])
+            continue
+        stmt = _statement(line)
         if isinstance(stmt, Tree) and stmt.data == "pr_set":
             _pr_set(cf, stmt, regs, group)
         elif isinstance(stmt, Tree) and stmt.data == "frame_set":
             fr = _frame_set(cf, stmt, regs, group)
-            key = fr.name.upper()
-            if key in seen:
-                cf.lint(stmt.children[0].start_pos, "duplicate-frame",
-                        f"{fr.name} is set twice (lines {seen[key]} and {fr.line})")
-            else:
-                seen[key] = fr.line
+            _set_again(cf, stmt.children[0].start_pos, fr, seen.get(fr.name.upper()))
+            seen[fr.name.upper()] = fr
             cf.frames.append(fr)
         elif stmt is not None and _FRAME_HEAD.match(stmt.value):
             cf.lint(stmt.start_pos, "unread-frame-set",
                     f"a frame assignment ucsio does not read: {stmt.value[:40]!r}")
+
+
+def _statement(line: Tree):
+    """The statement of ``[n]: statement``: a frame_set or pr_set node, a
+    REST token, or None (an empty line)."""
+    for child in line.children:
+        if isinstance(child, Tree) or child.type == "REST":
+            return child
+    return None
+
+
+def _text_line(cf: ControllerFile, tok) -> None:
+    """A /MN line that is no statement: a motion's logic ends at a line of
+    dashes; any other is kept as it is, and said (a frame assignment there
+    would not be read)."""
+    if _SEPARATOR.match(tok.value):
+        return
+    if _FRAME_HEAD.match(tok.value):
+        cf.lint(tok.start_pos, "unread-frame-set",
+                f"a frame assignment ucsio does not read (no line number): {tok.value[:40]!r}")
+        return
+    cf.lint(tok.start_pos, "unread-line", f"a /MN line that is no numbered statement, kept as "
+                                          f"it is: {tok.value[:40]!r}", severity="info")
+
+
+def _set_again(cf: ControllerFile, at: int, frame, before) -> None:
+    """A frame the program sets a second time: a TP program computes frames
+    so (a register zeroed, then PR[n]=LPOS), so only two literal values
+    that differ warn."""
+    if before is None:
+        return
+    differ = frame.pose is not None and before.pose is not None and frame.pose != before.pose
+    cf.lint(at, "duplicate-frame", f"{frame.name} is set twice (lines {before.line} and "
+                                   f"{frame.line})" + ("" if differ else
+                                                       ": not both literal values that differ"),
+            severity="warning" if differ else "info")
 
 
 def _pr_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int) -> None:
@@ -228,7 +314,9 @@ def _pr_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int) -> None:
     reg = regs.get(key)
     if reg is None:                     # the rest is what the controller holds
         reg = regs[key] = _Register(dict.fromkeys(range(1, 7)), False)
-    reg.values[component] = _literal(value) if value.type == "LITERAL" else None
+    if value.type == "REST":
+        _refuse_huge(cf.document, value)
+    reg.values[component] = _literal(cf.document, value) if value.type == "LITERAL" else None
 
 
 def _whole_value(value, number: int) -> _Register:
@@ -246,12 +334,28 @@ def _whole_value(value, number: int) -> _Register:
     return _Register(dict.fromkeys(range(1, 7)), False)
 
 
-def _literal(tok) -> Number:
+def _literal(doc: Document, tok) -> Number:
     """The number inside a LITERAL token ((-1100.3), ((-29)), 770.299): its
     span without the parentheses, the sign included."""
     m = _LITERAL_NUMBER.search(tok.value)
-    start = tok.start_pos + m.start()
-    return Number(Span(start, start + len(m.group())), m.group(), float(m.group()))
+    return _number(doc, m.group(), tok.start_pos + m.start())
+
+
+def _number(doc: Document, text: str, start: int) -> Number:
+    """A number the program writes; one beyond what a FANUC REAL (float32)
+    holds is refused, as the controller would (400 digits read as inf)."""
+    value = float(text)
+    if not abs(value) <= fanuc.REAL_MAX:
+        raise doc.error(f"number {text[:30]} is out of range for a FANUC REAL (float32)", start)
+    return Number(Span(start, start + len(text)), text, value)
+
+
+def _refuse_huge(doc: Document, tok) -> None:
+    """A value the LITERAL terminal leaves to REST (``1e39``, ``(-4E+40)``):
+    not read, but refused where no REAL holds it."""
+    m = _EXPONENT_NUMBER.match(tok.value)
+    if m is not None:
+        _number(doc, m.group(1), tok.start_pos + m.start(1))
 
 
 def _literal_index(index: Tree):
@@ -326,7 +430,7 @@ def _frame_set(cf: ControllerFile, stmt: Tree, regs: dict, group: int):
 # -- /POS: the taught points ------------------------------------------------------------
 class PointGroup(Value):
     """One motion group of a taught point: ``uf``/``ut`` the frames it was
-    taught in, ``config`` ('N U T, 0, 0, 0', None for joints), ``values``
+    taught in (None for F: never taught, ``untaught``), ``config`` ('N U T, 0, 0, 0', None for joints), ``values``
     {axis (X..R, J1.., E1..): Number, or None for ********} and their
     ``units`` (mm, deg); ``at``, ``uf_at``, ``ut_at``: the offsets of its
     ``GPn``, and of the UF and UT numbers (for file:line:col)."""
@@ -339,6 +443,12 @@ class PointGroup(Value):
         self.group, self.uf, self.ut, self.config = group, uf, ut, config
         self.values, self.units, self.line = values, units, line
         self.at, self.uf_at, self.ut_at = at, uf_at, ut_at
+
+    @property
+    def untaught(self) -> bool:
+        """A position that exists and was never taught: ``UF : F, UT : F``
+        (its values ``********``)."""
+        return self.uf is None or self.ut is None
 
     @property
     def joint(self) -> bool:
@@ -361,13 +471,14 @@ class PointGroup(Value):
 
 class Point(Value):
     """A position of /POS: ``P[12]`` with its comment and its groups
-    ({group number: PointGroup}); ``at`` the offset of its ``P``."""
+    ({group number: PointGroup}); ``at`` the offset of its ``P``, ``col``
+    its column on ``line``."""
 
-    __slots__ = ("number", "comment", "line", "groups", "at")
+    __slots__ = ("number", "comment", "line", "groups", "at", "col")
 
-    def __init__(self, number, comment, line, groups, at=None):
+    def __init__(self, number, comment, line, groups, at=None, col=None):
         self.number, self.comment, self.line, self.groups = number, comment, line, groups
-        self.at = at
+        self.at, self.col = at, col
 
     @property
     def name(self) -> str:
@@ -375,8 +486,46 @@ class Point(Value):
 
 
 def positions(doc: Document) -> list[Point]:
-    """The taught points of a program's /POS section, in order (the tree of
-    every byte: a syntax error anywhere is file:line:col)."""
+    """The taught points of a program's /POS section, in order
+    (``iter_positions``)."""
+    return list(iter_positions(doc))
+
+
+def iter_positions(doc: Document):
+    """The taught points of a program's /POS section, one at a time (a
+    reader that keeps only what it needs of each holds no list of 100,000).
+    The program without /POS goes through the grammar first (a syntax error
+    anywhere is file:line:col); /POS is read position by position with
+    patterns made of the grammar's own terminals, with no tree. A position
+    the patterns do not take leaves the file to the grammar
+    (``positions_whole``), which reads it alike or says where it is wrong."""
+    text = _lines(doc)
+    if not is_program(text):
+        return
+    try:
+        _recognise(_without_position_lines(text))
+    except Rejected:
+        yield from positions_whole(doc)
+        return
+    yield from _read_positions(doc, text)
+
+
+def _read_positions(doc: Document, text: str):
+    """/POS of a program whose other sections the grammar has taken."""
+    done = 0
+    try:
+        for point in _PositionScanner(doc, text).read():
+            yield point
+            done += 1
+    except (_NotPlain, UcsioError):
+        # the same points, or the grammar's first error (a syntax error
+        # after a number no REAL holds is the one the tree reports)
+        yield from positions_whole(doc)[done:]
+
+
+def positions_whole(doc: Document) -> list[Point]:
+    """``positions`` from the tree of every byte: the reference the fast
+    reader is held to (tests/test_tp_lines.py)."""
     text = _lines(doc)
     if not is_program(text):
         return []
@@ -397,10 +546,11 @@ def _positions(doc: Document, pos: Tree) -> list[Point]:
                 g = _point_group(doc, c)
                 groups[g.group] = g
             elif c.type == "POINT_COMMENT":
-                comment = c.value[1:].strip()[1:-1]
-        number = int(ch[1].value) if len(ch[1].value) < 10 else -1
-        out.append(Point(number, comment, doc.line_of(ch[0].start_pos), groups,
-                         ch[0].start_pos))
+                comment = _point_comment(c.value)
+        number = _index_number(doc, ch[1].value, ch[1].start_pos)
+        at = ch[0].start_pos
+        line, col = doc.line_col(at)
+        out.append(Point(number, comment, line, groups, at, col))
     return out
 
 
@@ -411,14 +561,203 @@ def _point_group(doc: Document, node: Tree) -> PointGroup:
     values, units = {}, {}
     for c in ch[3:]:
         if c.data == "config":
-            config = c.children[0].value[1:-1]
+            config = c.children[1].value[1:-1]
             continue
         axis, value, unit = c.children
         key = axis.value.upper()
-        values[key] = (None if value.type == "STARS" else
-                       Number(Span(value.start_pos, value.end_pos), value.value, float(value.value)))
+        values[key] = None if value.type == "STARS" else _number(doc, value.value, value.start_pos)
         units[key] = unit.value
-    group, uf_n, ut_n = (doc.integer(t.value[2:] if t is gp else t.value, t.start_pos, what)
-                         for t, what in ((gp, "group"), (uf, "user frame"), (ut, "tool frame")))
-    return PointGroup(group, uf_n, ut_n, config, values, units,
+    return PointGroup(_index_number(doc, gp.value[2:], gp.start_pos + 2),
+                      _frame_number(doc, uf.value, uf.start_pos),
+                      _frame_number(doc, ut.value, ut.start_pos), config, values, units,
                       doc.line_of(gp.start_pos), gp.start_pos, uf.start_pos, ut.start_pos)
+
+
+def _point_comment(text: str) -> str:
+    """``:"App"`` -> App."""
+    return text[1:].strip()[1:-1]
+
+
+def _index_number(doc: Document, digits: str, at: int) -> int:
+    """A point's or group's number as written; digits no controller
+    numbers by are refused, naming the place."""
+    if len(digits) > 9:
+        raise doc.error(f"number {digits[:30]}... has {len(digits)} digits: not a FANUC index", at)
+    return int(digits)
+
+
+def _frame_number(doc: Document, text: str, at: int) -> int | None:
+    """The UF or UT a position was taught in; None for F (untaught)."""
+    return None if text == "F" else _index_number(doc, text, at)
+
+
+class _NotPlain(Exception):
+    """Text the fast /POS reader does not take: the grammar decides."""
+
+
+class _PositionScanner:
+    """/POS read position by position, each token matched with the
+    grammar's own terminal patterns (``_position_patterns``) as its lexer
+    would match it, so what this reads is what the tree gives; anything
+    else raises _NotPlain."""
+
+    def __init__(self, doc: Document, text: str):
+        self.doc, self.text = doc, text
+        self.p = _position_patterns()
+        self.counted = (0, 1)           # (offset, its line): lines counted as the reader goes
+
+    def line(self, at: int) -> int:
+        """The line of ``at`` (offsets only grow): the LFs of the grammar's
+        copy of the text are the document's line ends, and the document's
+        table of 800,000 line starts is not built."""
+        offset, line = self.counted
+        line += self.text.count("\n", offset, at)
+        self.counted = (at, line)
+        return line
+
+    def col(self, at: int) -> int:
+        return at - self.text.rfind("\n", 0, at)
+
+    def read(self):
+        text = self.text
+        pos = _pos_line(text)
+        if pos is None:
+            return
+        end = _END_LINE.search(text, pos.end())
+        stop = text.index("/END", end.start())
+        at = self._need(self.p.newline, pos.end()).end()
+        while at < stop:
+            m = self.p.plain.match(text, at)
+            point, at = self._plain(m) if m is not None else self._point(at)
+            yield point
+        if at != stop:          # pragma: no cover - a newline ends at a non-blank
+            raise _NotPlain
+
+    def _plain(self, m) -> tuple[Point, int]:
+        """A position of one group with X Y Z W P R and nothing else, the
+        way a controller writes most: one match (``_Patterns.plain``)."""
+        doc = self.doc
+        p_at = m.start("p")
+        p_line, p_col = self.line(p_at), self.col(p_at)
+        values, units = {}, {}
+        for key in _CARTESIAN:
+            value = m.group(key)
+            values[key] = None if value[0] == "*" else _number(doc, value, m.start(key))
+            units[key] = _UNITS[m.group(key + "u")]
+        gp_at, config, comment = m.start("gp"), m.group("config"), m.group("comment")
+        group = PointGroup(_index_number(doc, m.group("gp")[2:], gp_at + 2),
+                           _frame_number(doc, m.group("uf"), m.start("uf")),
+                           _frame_number(doc, m.group("ut"), m.start("ut")),
+                           None if config is None else config[1:-1], values, units,
+                           self.line(gp_at), gp_at, m.start("uf"), m.start("ut"))
+        return Point(_index_number(doc, m.group("number"), m.start("number")),
+                     None if comment is None else _point_comment(comment), p_line,
+                     {group.group: group}, p_at, p_col), m.end()
+
+    def _need(self, pattern, at: int):
+        m = pattern.match(self.text, at)
+        if m is None:
+            raise _NotPlain
+        return m
+
+    def _point(self, at: int) -> tuple[Point, int]:
+        doc, p = self.doc, self.p
+        head = self._need(p.head, at)
+        p_at = head.start("p")
+        p_line, p_col = self.line(p_at), self.col(p_at)
+        number = _index_number(doc, head.group("number"), head.start("number"))
+        comment = head.group("comment")
+        groups = {}
+        at = head.end()
+        while True:
+            g = p.group.match(self.text, at)
+            if g is None:
+                break
+            group, at = self._group(g)
+            groups[group.group] = group
+        if not groups:
+            raise _NotPlain
+        at = self._need(p.tail, at).end()
+        return Point(number, None if comment is None else _point_comment(comment),
+                     p_line, groups, p_at, p_col), at
+
+    def _group(self, g) -> tuple[PointGroup, int]:
+        doc, p, text = self.doc, self.p, self.text
+        values, units = {}, {}
+        at = g.end()
+        c = p.component.match(text, at)
+        while c is not None:
+            value, key = c.group("value"), c.group("axis").upper()
+            values[key] = None if value[0] == "*" else _number(doc, value, c.start("value"))
+            units[key] = c.group("unit")
+            sep = p.comma.match(text, c.end())
+            if sep is None:         # the last one, without a trailing ","
+                at = p.newline_maybe.match(text, c.end()).end()
+                break
+            at = sep.end()          # "," and a line end: another component, or none
+            c = p.component.match(text, at)
+        config = g.group("config")
+        gp_at = g.start("gp")
+        group = PointGroup(_index_number(doc, g.group("gp")[2:], gp_at + 2),
+                           _frame_number(doc, g.group("uf"), g.start("uf")),
+                           _frame_number(doc, g.group("ut"), g.start("ut")),
+                           None if config is None else config[1:-1], values, units,
+                           self.line(gp_at), gp_at, g.start("uf"), g.start("ut"))
+        return group, at
+
+
+_CARTESIAN = ("X", "Y", "Z", "W", "P", "R")
+_UNITS = {"mm": "mm", "deg": "deg"}     # one string each, however many points
+
+
+class _Patterns:
+    __slots__ = ("newline", "newline_maybe", "head", "group", "component", "comma", "tail",
+                 "plain")
+
+
+_PATTERNS = None
+
+
+def _position_patterns() -> _Patterns:
+    """The tokens of a /POS position, from grammars/tp.lark's terminals,
+    each atomic (matched as the lexer matches it, never given back), WS
+    between any two, _NL only where the grammar has it."""
+    global _PATTERNS
+    if _PATTERNS is None:
+        from .lalr import atomic
+        t = _parser().terminals
+        gap = f"{atomic(t['WS'])}?+"
+        nl = f"(?:{gap}{atomic(t['_NL'])})?+"
+
+        def tokens(*parts: str) -> str:
+            return gap.join(parts)
+        frame_no = f"{atomic(t['INT'])}|{atomic(t['UNTAUGHT'])}"
+        p = _Patterns()
+        p.newline = regex.compile(atomic(t["_NL"]))
+        head = tokens(f"(?P<p>{atomic(t['P'])})", r"\[", f"(?P<number>{atomic(t['INT'])})",
+                      f"(?P<comment>{atomic(t['POINT_COMMENT'])})?+", r"\]", r"\{") + nl
+        p.head = regex.compile(head)
+        group = (gap + tokens(f"(?P<gp>{atomic(t['GP'])})", ":") + nl
+                 + gap + tokens("UF", ":", f"(?P<uf>{frame_no})", ",") + nl
+                 + gap + tokens("UT", ":", f"(?P<ut>{frame_no})", ",") + nl
+                 + f"(?:{gap}" + tokens(atomic(t["CONFIG_WORD"]), ":",
+                                        f"(?P<config>{atomic(t['CONFIG_STRING'])})", ",") + nl
+                 + ")?+")
+        p.group = regex.compile(group)
+        p.component = regex.compile(gap + tokens(
+            f"(?P<axis>{atomic(t['AXIS'])})", "=",
+            f"(?P<value>{atomic(t['NUMBER'])}|{atomic(t['STARS'])})",
+            f"(?P<unit>{atomic(t['UNIT'])})"))
+        p.comma = regex.compile(gap + "," + nl)
+        p.newline_maybe = regex.compile(nl)
+        tail = gap + tokens(r"\}", ";") + gap + atomic(t["_NL"])
+        p.tail = regex.compile(tail)
+        # the common position in one match: one group, X Y Z W P R in order
+        cartesian = (gap + f",{nl}{gap}").join(
+            tokens(f"{axis}(?=[ \t]*=)", "=", f"(?P<{axis}>{atomic(t['NUMBER'])}|"
+                   f"{atomic(t['STARS'])})", f"(?P<{axis}u>{atomic(t['UNIT'])})")
+            for axis in _CARTESIAN)
+        p.plain = regex.compile(head + group + gap + cartesian + f"(?:{gap},)?+" + nl
+                                + tail)
+        _PATTERNS = p
+    return _PATTERNS

@@ -190,7 +190,9 @@ def _names(names: list[str], most: int = 8) -> str:
 def fanuc_program(path: str, config: str | None, tool: str = "tool0",
                   wobj: str = "wobj0") -> RobotPoses:
     from ..parsing.document import Document
-    from ..parsing.tp import positions
+    from array import array
+
+    from ..parsing.tp import iter_positions
 
     if tool.strip().casefold() not in ("tool0", "ut0") or \
             wobj.strip().casefold() not in ("wobj0", "uf0"):
@@ -200,9 +202,10 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
     doc = Document.read(path)
     frames = _FanucFrames(config)
     poses = []
-    for p in positions(doc):
-        line, col = doc.line_col(p.at)
-        rp = RobotPose(p.name, p.comment or f"P{p.number}", line, col, None,
+    taught = []                         # (pose, UF, UT): the flanges are made at once
+    values = array("d")                 # their X Y Z W P R
+    for p in iter_positions(doc):       # one at a time: a path program has 100,000
+        rp = RobotPose(p.name, p.comment or f"P{p.number}", p.line, p.col, None,
                        aliases=(f"P{p.number}",) if p.comment else ())
         poses.append(rp)
         g = p.groups.get(1)
@@ -211,7 +214,8 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
             rp.problem = doc.error(f"{p.name}: no group 1 (GP1) position ({others}): not a "
                                    "pose of the robot's flange", p.at)
             continue
-        why = _not_cartesian(g.values, g.joint)
+        why = ("never taught (UF : F, UT : F): the position has no values" if g.untaught
+               else _not_cartesian(g.values, g.joint))
         if why:
             rp.problem = doc.error(f"{p.name}: {why}", g.at)
             continue
@@ -222,8 +226,36 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
         except UcsioError as exc:
             rp.problem = exc
             continue
-        rp.flange = _fanuc_flange(xyzwpr, user, tool_pose)
+        taught.append((rp, user, tool_pose))
+        values.extend(xyzwpr)
+    _fanuc_flanges(taught, values)
     return RobotPoses(path, "fanuc", poses, "fanuc")
+
+
+def _fanuc_flanges(taught: list, values) -> None:
+    """``_fanuc_flange`` of every position at once, as arrays: a path
+    program has 100,000 positions, and Pose algebra per position took 10 s.
+    ``taught``: (RobotPose, UF pose or None, UT pose or None), the same pose
+    objects for the positions that share a frame; ``values``: their X Y Z W
+    P R, six floats each (an array('d'): no float objects kept)."""
+    if not taught:
+        return
+    from ..geometry.arrays import flange_matrices
+    xyzwpr = np.frombuffer(values, dtype=float).reshape(-1, 6)
+    flanges = flange_matrices("fanuc", xyzwpr[:, 3:], xyzwpr[:, :3])
+    by_frames: dict = {}
+    for i, (_, user, tool) in enumerate(taught):
+        by_frames.setdefault((id(user), id(tool)), (user, tool, []))[2].append(i)
+    for user, tool, rows in by_frames.values():
+        if user is None and tool is None:
+            continue
+        left = np.eye(4) if user is None else _matrix(user)
+        right = np.eye(4) if tool is None else _matrix(tool.inverse())
+        for start in range(0, len(rows), 10_000):      # bounded temporaries
+            chunk = rows[start:start + 10_000]
+            flanges[chunk] = left @ flanges[chunk] @ right
+    for (rp, _, _), flange in zip(taught, flanges):
+        rp.flange = flange
 
 
 def fanuc_registers(path: str, config: str | None, tool: str = "tool0",
@@ -298,6 +330,7 @@ class _FanucFrames:
     def __init__(self, config: str | None):
         self.config = config
         self.cf = None
+        self.found: dict = {}           # (UF or UT, n): the pose, once found
 
     def _load(self):
         if self.cf is None:
@@ -316,6 +349,8 @@ class _FanucFrames:
         option names it, ``who``)."""
         if n == 0:
             return None
+        if (kind, n) in self.found:         # one look-up per frame, not per position
+            return self.found[kind, n]
         name = f"{kind}{n}"
         field = f"{kind} : {n}" if doc is not None else name
 
@@ -340,6 +375,7 @@ class _FanucFrames:
                 raise error(f"{who}: {field}, but {self.config} sets {name} twice with "
                             f"different values (lines {f.line} and {g.line}): which one the "
                             "position was taught in is not known")
+        self.found[kind, n] = f.pose
         return f.pose
 
 
