@@ -151,22 +151,37 @@ def _check_says(tmp_path, capsys, text: str) -> str:
     return capsys.readouterr().out
 
 
-@pytest.mark.parametrize("x, shown", [("2e6", "2e+06"), ("1e308", "1e+308")])
-def test_patch_refuses_a_fanuc_value_check_would_flag(tmp_path, capsys, x, shown):
+def _check_refuses(tmp_path, capsys, text: str) -> str:
+    """The error ``check`` gives for a program holding ``text``."""
+    f = tmp_path / "CHECKED.LS"
+    f.write_bytes(text.encode())
+    assert main(["check", str(f)]) == 2
+    return capsys.readouterr().err
+
+
+# 2e6 a REAL holds and check flags (a lint); 1e308 no REAL holds, and check
+# refuses the file (the reader's error): the patch gives the same reason
+@pytest.mark.parametrize("x, reason, check_says", [
+    ("2e6", "UF1: X 2e+06 mm is 1 km or more from the origin (out-of-range)",
+     ":11:17: warning: out-of-range: UF1: X 2e+06 mm is 1 km or more from the origin"),
+    ("1e308", "UF1: number 100000000000000001097906362944 is out of range for a FANUC REAL "
+     "(float32)", ":11:17: number 100000000000000001097906362944 is out of range for a FANUC "
+     "REAL (float32)")])
+def test_patch_refuses_a_fanuc_value_check_would_flag(tmp_path, capsys, x, reason, check_says):
     prog = tmp_path / "P.LS"
     prog.write_bytes(FANUC_PROGRAM.read_bytes())
     for args in (["-o", str(tmp_path / "out.ls")], ["--in-place"]):
         rc = main(["patch", str(prog), "--frame", "UF1", "--set", f"{x},0,0,0,0,0", *args])
         err = capsys.readouterr().err
         assert rc == 2 and err.count("\n") == 1, err
-        reason = f"UF1: X {shown} mm is 1 km or more from the origin"
-        assert f"{prog}:11:17: {reason} (out-of-range): the controller cannot hold" in err
+        assert f"{prog}:11:17: {reason}: the controller cannot hold" in err
     assert prog.read_bytes() == FANUC_PROGRAM.read_bytes()
     assert not (tmp_path / "out.ls").exists()
     # check's own words for the same value in the same place
     text = FANUC_PROGRAM.read_bytes().decode().replace("PR[30,1]=1200.000",
                                                        f"PR[30,1]={float(x):.3f}")
-    assert f":11:17: warning: out-of-range: {reason}" in _check_says(tmp_path, capsys, text)
+    said = (_check_says if x == "2e6" else _check_refuses)(tmp_path, capsys, text)
+    assert check_says in said
 
 
 def test_program_refuses_a_value_check_would_flag(solution, tmp_path, capsys):
