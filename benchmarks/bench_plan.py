@@ -102,7 +102,7 @@ def run_plan(folder: Path, *extra) -> dict:
     out = io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
         main(["plan", str(folder / "plan.csv"), "--at", str(folder / "at.csv"), "--candidates",
-              str(folder / "candidates.csv"), "--json", *extra])
+              str(folder / "candidates.csv"), "--sigma-robot", "0.05", "--json", *extra])
     return json.loads(out.getvalue())
 
 
