@@ -210,9 +210,11 @@ def test_plan(demo, monkeypatch):
          codes=(1,))
     assert p.verdict == "fail" and p.suggest.add is not None
     monkeypatch.chdir(demo / "R03_kuka")
-    p = api.plan("jig_points.txt", robot="MEASURE.dat", config="$config.dat", tcp="solve")
+    p = api.plan("jig_points.txt", robot="MEASURE.dat", config="$config.dat", tcp="solve",
+                 history="..")
     same(p, "plan", "jig_points.txt", "--robot", "MEASURE.dat", "--config", "$config.dat",
-         "--tcp", "solve")
+         "--tcp", "solve", "--history", "..")
+    assert p.noise.source == "history" and p.noise.datasets >= 4     # the demo's solutions
     assert p.tcp_at_95 > 0 and p.orientation_span > 90
 
 

@@ -38,6 +38,9 @@ def run(*args) -> tuple[int, str, str]:
 
 
 def plan_json(*args):
+    """plan --json with the noise the Monte Carlos draw, unless ``args`` state one."""
+    if not any(str(a).startswith(("--sigma-", "--history")) for a in args):
+        args += ("--sigma-laser", SIGMA_LASER, "--sigma-robot", SIGMA_ROBOT)
     rc, out, err = run("plan", *args, "--json")
     assert rc in (0, 1), err
     return rc, json.loads(out)
@@ -170,9 +173,11 @@ def test_the_clustered_plan_is_refused_and_the_advice_passes(tmp_path):
     assert rc == 1 and got["verdict"] == "fail" and got["worst"]["at_95"] > 1.5
     assert "where the robot works" in got["reason"] and got["advice"].startswith("add a point")
     add = got["suggest"]["add"]
-    assert add["worst_after"] <= 1.5 and add["from"] == "box corners"
+    assert add["worst_after"] <= 1.5 and add["from"] == "near planned points"
+    assert 0 < add["nearest"]["distance"] <= 250.0                 # --margin's default
     rc, text, _ = run("plan", plan, *args)
-    assert rc == 1 and "FAIL" in text and f"add a point at {add['name']}" in text
+    where = f"({add['x']:.1f}, {add['y']:.1f}, {add['z']:.1f})"
+    assert rc == 1 and "FAIL" in text and f"add a point at {where}" in text
     followed = write_plan(tmp_path / "followed.csv",
                           np.vstack([laser, [add["x"], add["y"], add["z"]]]))
     rc, after = plan_json(followed, *args)
@@ -277,7 +282,8 @@ def test_plan_from_the_measurement_programs_dat(tmp_path):
     assert same["tcp_at_95"] == pytest.approx(got["tcp_at_95"], rel=1e-6)
     assert same["worst"]["at_95"] == pytest.approx(got["worst"]["at_95"], rel=1e-6)
     # without --tcp solve the poses are not needed, and said so
-    rc, out, err = run("plan", plan, "--robot", DEMO / "R03_kuka" / "MEASURE.dat")
+    rc, out, err = run("plan", plan, "--robot", DEMO / "R03_kuka" / "MEASURE.dat",
+                       "--sigma-robot", SIGMA_ROBOT)
     assert rc == 0 and "matter only with --tcp solve" in err
 
 
@@ -352,7 +358,7 @@ def test_threshold_and_options(tmp_path):
     # the noise scales every prediction
     _, loud = plan_json(plan, "--sigma-laser", "0.03", "--sigma-robot", "0.1")
     assert loud["worst"]["at_95"] == pytest.approx(2 * worst, rel=1e-9)
-    rc, text, _ = run("plan", plan)
+    rc, text, _ = run("plan", plan, "--sigma-robot", SIGMA_ROBOT)
     assert "generic one 1000 mm from the centroid" in text and "PASS" in text
     for bad in (["--threshold", "0"], ["--reach", "-1"], ["--sigma-robot", "-1"],
                 ["--min-points", "2"], ["--tcp", "1,2"]):
@@ -389,7 +395,7 @@ def test_the_python_api_plans_and_predicts(tmp_path):
     laser = np.random.default_rng(1).uniform(-0.5, 0.5, (8, 3)) * (1200, 800, 300)
     plan = write_plan(tmp_path / "p.csv", laser)
     at = write_points(tmp_path / "at.csv", [[2000, 0, 0], [0, 1500, 200]])
-    got = api.plan(plan, at=at, threshold=0.2)
+    got = api.plan(plan, at=at, threshold=0.2, sigma_laser=SIGMA_LASER, sigma_robot=SIGMA_ROBOT)
     rc, cli = plan_json(plan, "--at", at, "--threshold", "0.2")
     assert got["worst"] == cli["worst"] and got["verdict"] == cli["verdict"]
     assert got["suggest"] == cli["suggest"]

@@ -361,14 +361,16 @@ def test_plan(demo):
             (r02, ["table_points.csv", "--at-taught", "CellR02.mod", "--frame", "wobjTable"],
              (0,)),
             (demo / "R03_kuka", ["jig_points.txt", "--robot", "MEASURE.dat", "--config",
-                                 "$config.dat", "--tcp", "solve"], (0,)),
-            (demo / "R01_kuka", ["base3_points.csv"], (0,))):
+                                 "$config.dat", "--tcp", "solve", "--history", ".."], (0,)),
+            (demo / "R01_kuka", ["base3_points.csv"], (1,))):      # an uncalibrated robot
         d = doc_of("plan", *args, "--json", cwd=cwd, codes=codes)
         check_version(d)
         validate("plan", d)
         for key in ("working_points", "worst", "verdict", "suggest"):
             requires("plan", d, key)
         requires("plan", d, "worst", "at_95")
+        requires("plan", d, "noise", "sigma")
+        requires("plan", d, "noise", "source")
         if "tcp_at_95" in d or d["suggest"]["add"] is not None:
             requires("plan", d, "suggest", "add", "worst_after")
 

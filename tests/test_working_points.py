@@ -71,7 +71,8 @@ def test_solve_at_gives_what_the_plan_predicted(tmp_path):
     plan = tmp_path / "plan.csv"
     plan.write_text("point,laser_x,laser_y,laser_z\n" + "".join(
         f"P{i + 1},{p[0]!r},{p[1]!r},{p[2]!r}\n" for i, p in enumerate(laser.tolist())))
-    rc, out, _ = run("plan", plan, "--at", at, "--json")
+    rc, out, _ = run("plan", plan, "--at", at, "--json", "--sigma-laser", "0.015",
+                     "--sigma-robot", "0.05")                    # solve's stated noise
     planned = json.loads(out)
     got = {w["name"]: w["at_95"] for w in sol["working_points"]}
     want = {w["name"]: w["at_95"] for w in planned["working_points"]}

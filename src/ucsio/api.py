@@ -374,8 +374,9 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
          config: PathLike | None = None, map: PathLike | None = None,
          robot_tool: str = "tool0", robot_wobj: str = "wobj0",
          threshold: float = defaults.THRESHOLD, reach: float = defaults.REACH,
-         sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
-         min_points: int = defaults.MIN_POINTS) -> PlanResult:
+         sigma_laser: float | None = None, sigma_robot: float | None = None,
+         history: PathLike | None = None, min_points: int = defaults.MIN_POINTS,
+         margin: float = defaults.MARGIN, laser_units: str = "mm") -> PlanResult:
     """``ucsio plan --json``: from the planned points alone (``plan``: point,
     laser_x/y/z in the UCS, mm; robot_* or ``robot`` for the planned flange
     poses), the fitted frame's predicted 95 % error (mm) at the working
@@ -383,13 +384,18 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
     ``readers.points.Points``; or ``at_taught`` CONTROLLER with ``frame``;
     none: the generic point ``reach`` mm from the centroid), the ``worst``,
     the ``verdict`` against ``threshold`` and ``suggest`` (add from
-    ``candidates``, drop). ``tcp="solve"`` plans the TCP with the frame."""
+    ``candidates``, else locations within ``margin`` mm of a planned point;
+    drop). ``tcp="solve"`` plans the TCP with the frame. The noise: the
+    stated ``sigma_laser``/``sigma_robot``, the fleet's own from ``history``
+    (a batch --json result or a folder of solutions), else an uncalibrated
+    robot's (``defaults.PLAN_SIGMA_ROBOT``)."""
     from .commands import plan as command
     doc = command.plan_measurement(
         plan, robot=robot, config=config, map=map, robot_tool=robot_tool,
         robot_wobj=robot_wobj, tcp=tcp, tool=tool, at=at, at_taught=at_taught, frame=frame,
         candidates=candidates, threshold=threshold, reach=reach, min_points=min_points,
-        sigma_laser=sigma_laser, sigma_robot=sigma_robot)
+        sigma_laser=sigma_laser, sigma_robot=sigma_robot, history=history, margin=margin,
+        laser_units=laser_units)
     return _document(PlanResult, doc)
 
 

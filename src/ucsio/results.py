@@ -705,14 +705,39 @@ class BatchOutput(Result):
 
 # ------------------------------------------------------------------ plan
 
+class Nearest(Result):
+    """Where a suggested point lies from the nearest planned point: its
+    ``name``, the ``distance`` (mm) and the ``offset`` [dx, dy, dz] (mm, UCS)."""
+    name: str
+    distance: float
+    offset: list[float]
+
+
 class SuggestAdd(Result):
     """The candidate (``x y z`` in the UCS, mm) whose point most lowers the
-    worst working point's error, and that error then (mm)."""
+    worst working point's error, and that error then (mm); ``from``
+    ("candidates" or "near planned points") and ``nearest``."""
     name: str
     x: float
     y: float
     z: float
     worst_after: float | None
+    nearest: Nearest
+
+
+class PlanNoise(Result):
+    """The noise a plan assumes (``sigma``, mm per axis) and its ``source``:
+    "default" (an uncalibrated robot), "stated" (``sigma_laser``,
+    ``sigma_robot``) or "history" (``history``, ``datasets``, their residual
+    σ's ``mean`` and ``std``)."""
+    sigma: float
+    source: str
+    sigma_laser: float | None
+    sigma_robot: float | None
+    history: str | None
+    datasets: int | None
+    mean: float | None
+    std: float | None
 
 
 class SuggestDrop(Result):
@@ -735,6 +760,7 @@ class PlanResult(Result):
     schema_version: int
     planned: int
     sigma: float
+    noise: PlanNoise
     threshold: float
     working_points: list[WorkingPoint]
     worst: Worst

@@ -9,8 +9,10 @@ nominal references, as in the measurement CSV; optional robot_* columns or
 in the UCS; or --at-taught CONTROLLER --frame NAME: the positions taught in
 that frame, as diff --points finds them; default: the determinacy gate's
 point --reach mm from the centroid); candidate locations for a further point
-(--candidates FILE, default the corners of the box around the planned and
-the working points).
+(--candidates FILE, default a grid of locations within --margin mm of a
+planned point); the noise (--sigma-laser, --sigma-robot, or --history FILE:
+the fleet's past residuals; default an uncalibrated robot's, printed in the
+first line).
 
 Exit 0 when the worst working point (and with --tcp solve the TCP) is
 predicted within the threshold, 1 when not, 2 bad input."""
@@ -62,7 +64,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="with --at-taught: the frame the positions are taught in (the UCS)")
     p.add_argument("--candidates", metavar="FILE", default=None,
                    help="where a further point could go: CSV of point, x, y, z in the UCS "
-                        "(default: the corners of the box around the planned and working points)")
+                        "(default: a grid of locations within --margin of a planned point)")
+    p.add_argument("--margin", type=float, default=defaults.MARGIN, metavar="MM",
+                   help="without --candidates: how far from a planned point a further "
+                        f"reflector could go (default {defaults.MARGIN:g})")
+    p.add_argument("--laser-units", choices=("mm", "m", "in"), default="mm",
+                   help="units of the plan's laser coordinates (default mm)")
     p.add_argument("--threshold", type=float, default=defaults.THRESHOLD, metavar="MM",
                    help=f"the worst working point's 95 %% error must be within this "
                         f"(default {defaults.THRESHOLD})")
@@ -72,15 +79,23 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--min-points", type=int, default=defaults.MIN_POINTS, metavar="N",
                    help="solve rejects fewer used points: a plan below it is warned about, and "
                         f"a drop never goes below it (default {defaults.MIN_POINTS})")
-    p.add_argument("--sigma-laser", type=float, default=defaults.SIGMA_LASER, metavar="MM",
-                   help=f"laser noise per axis, mm (default {defaults.SIGMA_LASER})")
-    p.add_argument("--sigma-robot", type=float, default=defaults.SIGMA_ROBOT, metavar="MM",
-                   help=f"robot noise per axis, mm (default {defaults.SIGMA_ROBOT})")
+    noise = p.add_argument_group("the noise (default: an uncalibrated robot)")
+    noise.add_argument("--sigma-laser", type=float, default=None, metavar="MM",
+                       help=f"laser noise per axis, mm (default {defaults.SIGMA_LASER})")
+    noise.add_argument("--sigma-robot", type=float, default=None, metavar="MM",
+                       help=f"robot noise per axis, mm (default {defaults.PLAN_SIGMA_ROBOT}: "
+                            "an uncalibrated industrial robot's absolute error, the seed "
+                            "paper's mean + one standard deviation over 485 datasets)")
+    noise.add_argument("--history", metavar="FILE", default=None,
+                       help="take the noise from past results: a batch --json result, a "
+                            "SOLUTION.json or a folder of them (the mean + one standard "
+                            "deviation of their residual sigma)")
 
 
 def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
-              robot_tool: str = "tool0", robot_wobj: str = "wobj0"):
-    """(method.plan.Planned, warnings) from PLAN.csv and --robot."""
+              robot_tool: str = "tool0", robot_wobj: str = "wobj0", laser_units: str = "mm"):
+    """(method.plan.Planned, warnings) from PLAN.csv and --robot, the laser
+    coordinates in mm."""
     import numpy as np
 
     from ..method.plan import Planned
@@ -96,12 +111,16 @@ def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
     for opt, given in (("--config", config), ("--map", map)):
         if given is not None and robot is None:
             raise UcsioError(f"{opt} goes with --robot")
+    from ..readers import laser
+    if laser_units not in laser.UNITS:
+        raise UcsioError(f"--laser-units {laser_units!r}: expected one of "
+                         f"{', '.join(laser.UNITS)}")
     if has_robot:
         from ..method.measurement import parse_measurement
         m = parse_measurement(text, plan)
-        return Planned(plan, m.names, m.lines, m.laser, m.weights, m.flange), warnings
-    from ..readers import laser
-    lp = laser.read_laser(plan)
+        return (Planned(plan, m.names, m.lines, m.laser * laser.UNITS[laser_units], m.weights,
+                        m.flange), warnings)
+    lp = laser.read_laser(plan, laser_units)
     if robot is None:
         return Planned(plan, lp.names, lp.lines, lp.xyz, lp.weights), list(lp.warnings)
     if not joint:
@@ -165,18 +184,18 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
                      robot_wobj: str = "wobj0", tcp=None, tool=None, at=None, at_taught=None,
                      frame=None, candidates=None, threshold: float = defaults.THRESHOLD,
                      reach: float = defaults.REACH, min_points: int = defaults.MIN_POINTS,
-                     sigma_laser: float = defaults.SIGMA_LASER,
-                     sigma_robot: float = defaults.SIGMA_ROBOT) -> dict:
+                     margin: float = defaults.MARGIN, laser_units: str = "mm",
+                     sigma_laser: float | None = None, sigma_robot: float | None = None,
+                     history=None) -> dict:
     """The command's work, for ``run`` and ``ucsio.api.plan`` alike: --json's
     document. Each keyword is the option of that name; ``tcp`` may also be
     three numbers, ``at`` and ``candidates`` ``readers.points.Points``."""
     import math
 
-    from ..method import solve as solver
     from ..method.plan import plan as plan_points
 
-    solver.check_sigmas(sigma_laser, sigma_robot)
-    for opt, v in (("--threshold", threshold), ("--reach", reach)):
+    sigma_laser, sigma_robot, noise, warnings = plan_noise(sigma_laser, sigma_robot, history)
+    for opt, v in (("--threshold", threshold), ("--reach", reach), ("--margin", margin)):
         if not (math.isfinite(v) and v > 0):
             raise UcsioError(f"{opt} {v}: expected a positive number of mm")
     if min_points < 3:
@@ -185,8 +204,10 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
     if tool is not None or tcp is not None:
         from .solve import resolve_tcp
         resolve_tcp(tcp, tool)          # checked; a known TCP's value changes nothing
-    planned, warnings = read_plan(plan, joint, robot=robot, config=config, map=map,
-                                  robot_tool=robot_tool, robot_wobj=robot_wobj)
+    planned, more = read_plan(plan, joint, robot=robot, config=config, map=map,
+                              robot_tool=robot_tool, robot_wobj=robot_wobj,
+                              laser_units=laser_units)
+    warnings += more
     points, more = working_points(at, at_taught, frame)
     warnings += more
     if isinstance(candidates, (str, os.PathLike)):
@@ -194,13 +215,56 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
         candidates = read_points(candidates, "candidate file")
     result = plan_points(planned, joint=joint, at=points, candidates=candidates,
                          threshold=threshold, reach=reach, sigma_laser=sigma_laser,
-                         sigma_robot=sigma_robot, min_points=min_points)
+                         sigma_robot=sigma_robot, min_points=min_points, margin=margin)
+    result["noise"] = noise
     result["warnings"] = warnings + result["warnings"]
     result["source"] = os.fspath(plan)
     if points is not None:
         result["at"] = (f"{os.fspath(at_taught)}:{frame}" if at_taught is not None else
                         os.fspath(at) if isinstance(at, (str, os.PathLike)) else points.path)
     return result
+
+
+def plan_noise(sigma_laser, sigma_robot, history):
+    """(σ_laser, σ_robot, the JSON's ``noise``, warnings): the stated noise,
+    else the fleet's own (--history), else an uncalibrated robot's. A noise
+    of 0 predicts no error at all: refused."""
+    import math
+
+    from ..method import solve as solver
+
+    if history is not None:
+        if sigma_laser is not None or sigma_robot is not None:
+            raise UcsioError("--history takes the noise from past results: give it or "
+                             "--sigma-laser/--sigma-robot, not both")
+        from ..readers.history import read_history
+        h = read_history(history)
+        noise = {"sigma": h.sigma, "source": "history", "history": os.fspath(history),
+                 "datasets": len(h.sigmas), "mean": h.mean, "std": h.std,
+                 "statistic": "mean + 1 sd of the datasets' residual sigma"}
+        k = len(h.skipped)
+        warnings = [f"--history: skipped {k} JSON file{'s' if k != 1 else ''} that "
+                    f"{'is' if k == 1 else 'are'} not a solution or batch result"] if k else []
+        if len(h.sigmas) == 1:
+            warnings.append("--history: one past dataset: its own residual sigma (one "
+                            "measurement says little about a fleet)")
+        # the residuals' σ already holds the tracker's share
+        return 0.0, h.sigma, noise, warnings
+    source = "default" if sigma_laser is None and sigma_robot is None else "stated"
+    sigma_laser = defaults.SIGMA_LASER if sigma_laser is None else sigma_laser
+    sigma_robot = defaults.PLAN_SIGMA_ROBOT if sigma_robot is None else sigma_robot
+    solver.check_sigmas(sigma_laser, sigma_robot)
+    sigma = math.hypot(sigma_laser, sigma_robot)
+    if sigma == 0:
+        raise UcsioError("--sigma-laser 0 and --sigma-robot 0: a plan without noise predicts "
+                         "no error at all; state the noise, or take it from --history FILE")
+    warnings = []
+    if sigma_robot == 0:
+        warnings.append("--sigma-robot 0: a robot without noise; the plan is optimistic "
+                        "(an uncalibrated robot is about 0.4-0.7 mm per axis)")
+    return sigma_laser, sigma_robot, {"sigma": sigma, "source": source,
+                                      "sigma_laser": sigma_laser, "sigma_robot": sigma_robot}, \
+        warnings
 
 
 def run(args) -> int:
@@ -221,10 +285,11 @@ SHOWN = 10          # the working points the table shows (the worst)
 
 
 def render(r: dict, args=None, stream=None) -> str:
+    from ..method.plan import from_nearest, location
     from ..output import paint, table
 
     lines = [f"plan: {r['planned']} points from {r['source']}; noise {r['sigma']:.3f} mm per "
-             f"axis; threshold {r['threshold']:g} mm"]
+             f"axis ({noise_words(r['noise'])}); threshold {r['threshold']:g} mm"]
     rows = sorted(r["working_points"], key=lambda w: -w["at_95"])
     n = len(rows)
     what = (f"working points: {n} from {r['at']}" if r.get("at") else
@@ -241,12 +306,11 @@ def render(r: dict, args=None, stream=None) -> str:
                      f"span {r['orientation_span']:.1f} deg")
     add, drop = r["suggest"]["add"], r["suggest"]["drop"]
     if add is not None:
-        where = f"{add['x']:.1f}, {add['y']:.1f}, {add['z']:.1f}"
         tail = ""
         if "tcp_at_95_after" in add:
             tail = (f", tcp {add['tcp_at_95_after']:.3f} mm (flange held as at "
                     f"{add['orientation_from']})")
-        lines.append(f"add:  a point at {add['name']} ({where}): worst then "
+        lines.append(f"add:  a point at {location(add)}, {from_nearest(add)}: worst then "
                      f"{add['worst_after']:.3f} mm{tail}")
     if drop is not None:
         tail = (f", tcp {drop['tcp_at_95_after']:.3f} mm" if "tcp_at_95_after" in drop else "")
@@ -258,3 +322,14 @@ def render(r: dict, args=None, stream=None) -> str:
         advice = f"; {r['advice']}" if r.get("advice") else ""
         lines.append(paint(f"FAIL: {r['reason']}{advice}", "fail", stream))
     return "\n".join(lines) + "\n"
+
+
+def noise_words(noise: dict) -> str:
+    """Where the plan's noise comes from, for its first line."""
+    if noise["source"] == "history":
+        return (f"from {noise['datasets']} past dataset{'s' if noise['datasets'] != 1 else ''} "
+                f"in {noise['history']}: mean {noise['mean']:.3f} + 1 sd {noise['std']:.3f}")
+    if noise["source"] == "default":
+        return ("an uncalibrated robot, ucsio's default: --sigma-robot or --history FILE for "
+                "yours")
+    return f"stated: laser {noise['sigma_laser']:g}, robot {noise['sigma_robot']:g}"

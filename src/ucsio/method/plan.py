@@ -13,9 +13,11 @@ From it:
   points of a frame, or the gate's generic point ``--reach`` mm from the
   centroid), the worst, and with ``--tcp solve`` the TCP's 95 % doubt and
   the flange orientations' span; the verdict against the threshold;
-- ``suggest.add``: of the candidate locations (a file, or the corners of
-  the box around the planned and working points), the one whose point most
-  lowers the worst working-point error;
+- ``suggest.add``: of the candidate locations (a file, or a grid of
+  locations within ``margin`` mm of a planned point: a further reflector
+  goes on the fixture, near the ones planned), the one whose point most
+  lowers the worst working-point error, and where it lies from the nearest
+  planned point;
 - ``suggest.drop``: the planned point whose removal raises it least.
 
 A point's share of the fit is one term J_iᵀJ_i of H and G, so a candidate is
@@ -39,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from . import horn
+from .. import defaults
 from . import precision as prec
 from ..errors import UcsioError
 
@@ -170,19 +173,43 @@ def reach_point(m: Model, K: np.ndarray, reach: float, sigma: float):
     return m.c + m.R.T @ p[k], float(q[k])
 
 
-def default_candidates(planned: Planned, at) -> tuple[list[str], np.ndarray]:
-    """The corners of the box around the planned and the working points
-    (fewer where the box is flat)."""
-    pts = planned.laser if at is None else np.vstack([planned.laser, at.xyz])
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    corners = np.array([[(lo, hi)[(k >> a) & 1][a] for a in range(3)] for k in range(8)])
-    corners = np.unique(corners, axis=0)
-    return [f"corner {k + 1}" for k in range(len(corners))], corners
+DEFAULT_FROM = "near planned points"     # suggest.add.from of a default candidate
+#: grid steps along the longest side of the default candidates' box, at most
+GRID = 16
+
+
+def default_candidates(planned: Planned, margin: float) -> tuple[list[str], np.ndarray]:
+    """Locations within ``margin`` mm of a planned point, named after it: a
+    grid over the planned points' box widened by the margin (at most GRID
+    steps along its longest side, none coarser than half the margin), and the
+    six points ``margin`` away along each axis from every planned point
+    (the farthest a reflector may go, where its lever is longest)."""
+    L = planned.laser
+    lo, hi = L.min(axis=0) - margin, L.max(axis=0) + margin
+    step = max(margin / 2.0, float((hi - lo).max()) / GRID)
+    axes = [np.arange(a, b + step / 2.0, step) for a, b in zip(lo, hi)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    offsets = np.vstack([np.eye(3), -np.eye(3)]) * margin
+    xyz = np.vstack([grid, (L[:, None, :] + offsets[None]).reshape(-1, 3)])
+    near = nearest(L, xyz)
+    dist = np.linalg.norm(xyz - L[near], axis=1)
+    keep = (dist > 1e-9 * margin) & (dist <= margin * (1.0 + 1e-9))
+    return [f"near {planned.names[i]}" for i in near[keep]], xyz[keep] + 0.0     # no -0.0
+
+
+def relative_to_planned(planned: Planned, xyz) -> dict[str, Any]:
+    """Where a location lies from the nearest planned point: its ``name``,
+    the ``distance`` (mm) and the ``offset`` [dx, dy, dz] (mm, UCS axes)."""
+    xyz = np.asarray(xyz, dtype=float)
+    i = int(nearest(planned.laser, xyz[None])[0])
+    d = xyz - planned.laser[i]
+    return {"name": planned.names[i], "distance": float(np.linalg.norm(d)),
+            "offset": [float(v) for v in d]}
 
 
 def plan(planned: Planned, *, joint: bool = False, at=None, candidates=None,
          threshold: float, reach: float, sigma_laser: float, sigma_robot: float,
-         min_points: int) -> dict[str, Any]:
+         min_points: int, margin: float = defaults.MARGIN) -> dict[str, Any]:
     """The plan's JSON (SPEC: working_points, worst, tcp_at_95,
     orientation_span, verdict, suggest), with ``reason`` where it fails and
     ``warnings``."""
@@ -231,7 +258,7 @@ def plan(planned: Planned, *, joint: bool = False, at=None, candidates=None,
     if candidates is not None:
         cnames, cxyz = candidates.names, np.asarray(candidates.xyz, dtype=float)
     else:
-        cnames, cxyz = default_candidates(planned, at)
+        cnames, cxyz = default_candidates(planned, margin)
     T = candidate_terms(m, cxyz)
     Kc, okc = covariances(H + T, G + T)
     worst_c, _ = worst_error(m, Kc, okc, sigma, at, reach, (wl + cxyz) / (wsum + 1.0))
@@ -240,7 +267,8 @@ def plan(planned: Planned, *, joint: bool = False, at=None, candidates=None,
         b = int(np.argmin(worst_c))
         add = {"name": cnames[b], "x": float(cxyz[b, 0]), "y": float(cxyz[b, 1]),
                "z": float(cxyz[b, 2]), "worst_after": float(worst_c[b]),
-               "from": "candidates" if candidates is not None else "box corners"}
+               "from": "candidates" if candidates is not None else DEFAULT_FROM,
+               "nearest": relative_to_planned(planned, cxyz[b])}
         if joint:
             add["tcp_at_95_after"] = float(prec.q95(Kc[b:b + 1, 6:, 6:], sigma)[0]) \
                 if okc[b] else math.inf
@@ -273,12 +301,27 @@ def advice(out: dict[str, Any], add: dict[str, Any] | None) -> str | None:
     carries its own)."""
     if out["worst"]["at_95"] <= out["threshold"] or add is None:
         return None
-    where = f"{add['name']} ({add['x']:.1f}, {add['y']:.1f}, {add['z']:.1f})"
+    where = f"{location(add)}, {from_nearest(add)}"
     if add["worst_after"] <= out["threshold"]:
         return (f"add a point at {where}: the worst working point is then predicted within "
                 f"{add['worst_after']:.2f} mm; plan again with it")
     return (f"one more point is not enough (at best {add['worst_after']:.2f} mm, at {where}): "
             "add it, spread the others toward the working points, and plan again")
+
+
+def location(add: dict[str, Any]) -> str:
+    """'C3 (1200.0, 800.0, 0.0)', or the coordinates alone for a default
+    candidate (its name is the nearest planned point's, said next)."""
+    xyz = f"({add['x']:.1f}, {add['y']:.1f}, {add['z']:.1f})"
+    return xyz if add["from"] == DEFAULT_FROM else f"{add['name']} {xyz}"
+
+
+def from_nearest(add: dict[str, Any]) -> str:
+    """'212.1 mm from M3 (+150.0, +150.0, +0.0)': where a suggested point
+    lies from the nearest planned one."""
+    near = add["nearest"]
+    dx, dy, dz = near["offset"]
+    return f"{near['distance']:.1f} mm from {near['name']} ({dx:+.1f}, {dy:+.1f}, {dz:+.1f})"
 
 
 def at_extra(at) -> list[dict[str, Any]] | None:

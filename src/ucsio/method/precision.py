@@ -214,7 +214,8 @@ def trace_coefficients(cov: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     S = np.einsum("bkil,mjl->bkmij", AC, _A)                    # A_k C A_mᵀ (B, 4, 4, 3, 3)
     S = np.stack([S[:, k, m] if k == m else S[:, k, m] + S[:, m, k] for k, m in _PAIRS], axis=1)
     c2 = np.einsum("nixx->ni", S)
-    c4 = np.einsum("nixy,njyx->nij", S, S).reshape(len(cov), -1) @ _PRODUCT
+    c4 = np.einsum("nk,kj->nj", np.einsum("nixy,njyx->nij", S, S).reshape(len(cov), -1),
+                   _PRODUCT)
     return c2, c4
 
 
@@ -281,10 +282,10 @@ def worst_at_points95(cov: np.ndarray, p, sigma_stated=1.0) -> tuple[np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         for a in range(0, B, step):
             b = min(B, a + step)
-            m = c2[a:b] @ m2
+            m = np.einsum("bk,kw->bw", c2[a:b], m2)
             cols = np.flatnonzero((m >= KEEP * m.max(axis=1, keepdims=True)).any(axis=0))
             m = m[:, cols]
-            h = c4[a:b] @ m4[:, cols]
+            h = np.einsum("bk,kw->bw", c4[a:b], m4[:, cols])
             h *= 2.0 / 9.0
             h /= m
             h /= m

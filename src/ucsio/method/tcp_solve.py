@@ -296,6 +296,11 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
                                               angle_std, spread)
     else:
         accepted, reason = judge(accepted, reason, dict(precision), worst, gate, threshold)
+    if accepted and s_res > 0 and finite:
+        # the gates passed on these residuals: the TCP's 95 % for such fits
+        judged = selected_doubt(K, stated, s_res, dof, threshold, gate, reach, cov_json, R, at)
+        tcp_std = tcp_std * (judged / doubt)
+        doubt = precision["tcp_at_95"] = judged
     points = [PointResult(name=names[k], residual=float(resid[k]),
                           loo_residual=float(loo[k] if used[k] else resid[k]), used=bool(used[k]),
                           dx=float(e[k, 0]), dy=float(e[k, 1]), dz=float(e[k, 2]),
@@ -314,6 +319,26 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
     sol.tcp_solved = {"x": tcp[0], "y": tcp[1], "z": tcp[2], "solved": True,
                       "std": {k: float(v) for k, v in zip("xyz", tcp_std)}, "at_95": doubt}
     return sol
+
+
+def selected_doubt(K, stated: float, s_res: float, dof: float, threshold: float, gate: str,
+                   reach: float, cov_json, R, at) -> float:
+    """The TCP's 95 % doubt of a fit the gates accepted (``selected``): the
+    gates judged the same residual σ s, so the residual side is the quantile
+    given that they passed; the stated noise's side as before."""
+    from . import precision as prec
+    from .selected import accepted_q95
+
+    unit = {"sigma_stated": 0.0, "sigma_residual": 1.0}
+    per_s = float(prec.q95(K[None, 6:, 6:], 0.0, 1.0, dof)[0])
+    if gate == "at" and at is not None:
+        from . import working
+        _, w = working.predict(dict(cov_json, **unit), R, at)
+        per_s = max(per_s, w["at_95"])
+    else:
+        per_s = max(per_s, float(prec.at_reach95(K[None, :6, :6], reach, 0.0, 1.0, dof)[0]))
+    return max(float(prec.q95(K[None, 6:, 6:], stated)[0]),
+               accepted_q95(K[6:, 6:], s_res, dof, threshold, per_s))
 
 
 def _leave_one_out(laser, Rf, tf, weights, used, R, t, x) -> np.ndarray:
