@@ -157,6 +157,10 @@ def test_a_tcp_from_an_unset_tool_is_warned_about(tmp_path, capsys):
     assert any(said in w for w in json.loads(captured.out)["warnings"])
     main(["solve", str(MEAS), "--tool", f"{CELL_CONFIG}:TOOL_DATA[1]", "--json"])
     assert "is unset" not in capsys.readouterr().err
+    # plan takes the same --tool
+    main(["plan", str(MEAS), "--tool", f"{CELL_CONFIG}:TOOL_DATA[4]", "--json"])
+    captured = capsys.readouterr()
+    assert said in captured.err and any(said in w for w in json.loads(captured.out)["warnings"])
     # batch: the entry's warnings, in the manifest's words
     shutil.copy(CELL_CONFIG, tmp_path / "$config.dat")
     shutil.copy(MEAS, tmp_path / "m.csv")

@@ -203,7 +203,8 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
     joint = isinstance(tcp, str) and tcp.strip().casefold() == "solve"
     if tool is not None or tcp is not None:
         from .solve import resolve_tcp
-        resolve_tcp(tcp, tool)          # checked; a known TCP's value changes nothing
+        resolve_tcp(tcp, tool, warnings)    # checked (an unset tool warned about); a known
+                                            # TCP's value changes nothing
     planned, more = read_plan(plan, joint, robot=robot, config=config, map=map,
                               robot_tool=robot_tool, robot_wobj=robot_wobj,
                               laser_units=laser_units)
