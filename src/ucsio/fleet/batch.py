@@ -801,7 +801,9 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             r.error, r.stage = str(exc), "diff"
             continue
         if sol.accepted:
-            r.delta = frame_delta(r.simulated, r.measured, r.entry.tolerance)
+            from ..review.patch import same_rotation_tolerance
+            r.delta = frame_delta(r.simulated, r.measured, r.entry.tolerance,
+                                  same_rotation_tolerance(frame.vendor))
     if progress:
         progress("solve", total, total)
     t3 = time.perf_counter()
