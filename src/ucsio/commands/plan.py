@@ -97,7 +97,7 @@ def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
         if given is not None and robot is None:
             raise UcsioError(f"{opt} goes with --robot")
     if has_robot:
-        from ..method.measurement import parse_measurement
+        from ..readers.measurement import parse_measurement
         m = parse_measurement(text, plan)
         return Planned(plan, m.names, m.lines, m.laser, m.weights, m.flange), warnings
     from ..readers import laser
