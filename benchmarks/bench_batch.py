@@ -82,7 +82,7 @@ def main(argv=None) -> int:
     from ucsio.fleet.batch import read_manifest
     from ucsio.cli import main as cli_main
     from ucsio.parsing.controller import load
-    from ucsio.method.measurement import read_measurement
+    from ucsio.readers.measurement import read_measurement
 
     n = args.entries
     with contextlib.ExitStack() as stack:

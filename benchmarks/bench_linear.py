@@ -277,7 +277,7 @@ READER_SHAPES = {f"reader {ctx} + {run}": (lambda prefix, make: lambda n: ("m.cs
 def run_readers(name: str, text: str) -> None:
     """What solve does with a measurement file: the merged CSV, and the laser
     side as each tracker export reader takes it."""
-    from ucsio.method.measurement import parse_measurement
+    from ucsio.readers.measurement import parse_measurement
     from ucsio.readers import laser
 
     for read in (parse_measurement, laser.spec_csv, laser.spatial_analyzer, laser.plain_table):

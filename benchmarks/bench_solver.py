@@ -47,7 +47,7 @@ sys.path.insert(0, str(ROOT / "src"))   # this checkout's ucsio, not an installe
 from ucsio.errors import UcsioError  # noqa: E402
 from ucsio.geometry import arrays  # noqa: E402
 from ucsio.method import horn  # noqa: E402
-from ucsio.method.measurement import read_measurement  # noqa: E402
+from ucsio.readers.measurement import read_measurement  # noqa: E402
 from ucsio.method.solve import solve_points, uncertainty  # noqa: E402
 
 

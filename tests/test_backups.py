@@ -329,7 +329,7 @@ def test_backup_commands_stay_light(tmp_path):
                              capture_output=True, text=True, check=True)
         out = json.loads(res.stdout.strip().splitlines()[-1])
         assert out == {"code": 0, "heavy": []}, (args, out)
-    source = (ROOT / "src" / "ucsio" / "parsing" / "backup.py").read_text()
+    source = (ROOT / "src" / "ucsio" / "parsing" / "sources.py").read_text()
     assert "\nimport zipfile" not in source and "    import zipfile" in source
 
 

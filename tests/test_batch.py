@@ -156,7 +156,7 @@ def test_group_statistics(fleet_json):
 def test_batch_solutions_equal_solve(fleet):
     """The batched solver gives what `ucsio solve` gives, entry by entry."""
     from ucsio.method import solve
-    from ucsio.method.measurement import read_measurement
+    from ucsio.readers.measurement import read_measurement
 
     dest, _ = fleet
     res = B.run_batch(B.read_manifest(dest / "manifest.toml"))

@@ -19,7 +19,7 @@ from fanuc_cell import Cell, inv, pose, position, program, registers, wpr
 from ucsio import api
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.method.measurement import read_measurement
+from ucsio.readers.measurement import read_measurement
 from ucsio.method.solve import solve
 from ucsio.readers.laser import read_laser
 from ucsio.readers.pairing import pair

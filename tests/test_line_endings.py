@@ -175,7 +175,7 @@ def test_measurement_files_count_lines_by_the_same_rule(tmp_path, ending):
     """A bad number on line 3 of a measurement CSV and of a tracker export is
     named on line 3, whatever ends the lines (str.splitlines counted CR CR LF
     as two)."""
-    from ucsio.method.measurement import read_measurement
+    from ucsio.readers.measurement import read_measurement
     from ucsio.readers.laser import read_laser
 
     rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c",

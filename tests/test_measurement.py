@@ -9,7 +9,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from ucsio.errors import UcsioError
-from ucsio.method.measurement import parse_measurement, read_measurement
+from ucsio.readers.measurement import parse_measurement, read_measurement
 from ucsio.method.solve import solve
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures" / "measurements"

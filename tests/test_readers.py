@@ -16,7 +16,7 @@ from ucsio.errors import UcsioError
 from ucsio.readers.laser import read_laser
 from ucsio.readers.pairing import pair, read_map
 from ucsio.readers.robot import read_robot
-from ucsio.method.measurement import read_measurement
+from ucsio.readers.measurement import read_measurement
 from ucsio.method.solve import solve
 
 TCP = (12.5, -30.25, 180.0)

@@ -45,7 +45,7 @@ def test_readme_says_which_pythons_and_how_on_windows():
 
 
 def test_measurement_example_is_read_as_written(tmp_path):
-    from ucsio.method.measurement import KNOWN, read_measurement
+    from ucsio.readers.measurement import KNOWN, read_measurement
     measurements = page("measurements.md")
     (csv,) = code_blocks("csv", measurements)
     path = tmp_path / "points.csv"

@@ -15,7 +15,7 @@ from ucsio.method import horn
 from ucsio.cli import main
 from ucsio.errors import UcsioError
 from ucsio.geometry.frames import Frame, Pose
-from ucsio.method.measurement import read_measurement
+from ucsio.readers.measurement import read_measurement
 from ucsio.method.solve import (analytical_std, leave_one_out, load_solution, solve, solve_points,
                          uncertainty)
 

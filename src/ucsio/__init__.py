@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from .errors import UcsioError
 from .geometry.frames import Frame, Pose
-from .parsing.controller import ControllerFile, load, parse
+from .parsing.controller import load, parse
 from .parsing.document import Document
+from .parsing.model import ControllerFile
 
 __all__ = ["ControllerFile", "Document", "Frame", "Pose", "UcsioError", "load", "parse"]
 __version__ = "0.1.0"

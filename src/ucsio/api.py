@@ -37,8 +37,8 @@ from .errors import UcsioError
 from .geometry.frames import Frame, Pose
 from .method.solution import load_solution, pose_from_json
 from .output import _clean, versioned
-from .parsing.controller import ControllerFile
 from .parsing.controller import load as _load
+from .parsing.model import ControllerFile
 from .results import (BackupsDiff, BatchOutput, CheckResult, DemoResult, DiffResult, FilesDiff,
                       FramesResult, PatchOutput, PlanResult, ProgramOutput, Result, SolveResult,
                       TaughtPoints)

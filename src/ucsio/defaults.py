@@ -21,3 +21,5 @@ REACH = 1000.0           # mm: the determinacy gate judges a point this far from
 #: stay far from overflow, and no cell is 1,000 km across: it is a unit or
 #: export error.
 MAX_MAGNITUDE = 1e9
+#: mm in one unit of the lengths a laser file may be written in (--laser-units)
+LENGTH_UNITS = {"mm": 1.0, "m": 1000.0, "in": 25.4}

@@ -116,7 +116,7 @@ def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
         raise UcsioError(f"--laser-units {laser_units!r}: expected one of "
                          f"{', '.join(laser.UNITS)}")
     if has_robot:
-        from ..method.measurement import parse_measurement
+        from ..readers.measurement import parse_measurement
         m = parse_measurement(text, plan)
         return (Planned(plan, m.names, m.lines, m.laser * laser.UNITS[laser_units], m.weights,
                         m.flange), warnings)

@@ -113,7 +113,7 @@ def read_inputs(measurement=None, laser=None, robot=None, *, laser_units: str = 
     for opt, given in (("--map", map), ("--config", config)):
         if given is not None:
             raise UcsioError(f"{opt} goes with --laser and --robot")
-    from ..method.measurement import read_measurement
+    from ..readers.measurement import read_measurement
     return read_measurement(measurement, laser_units=laser_units, angle_units=angle_units,
                             quaternion_order=quaternion_order), []
 

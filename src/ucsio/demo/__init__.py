@@ -69,7 +69,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
              tolerance: float | None = None) -> dict[str, Any]:
     from ..parsing.controller import load
     from ..review.diff import DEFAULT_TOLERANCE
-    from ..method.measurement import read_measurement
+    from ..readers.measurement import read_measurement
     from ..geometry.frames import tool_tcp
     from ..review.patch import patch_frame, save
     from ..review.compare import diff_frame

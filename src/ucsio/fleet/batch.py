@@ -550,7 +550,7 @@ class _Cache:
         return self._get(self.controllers, path, load)
 
     def measurement(self, path: str, reading: tuple = ()):
-        from ..method.measurement import read_measurement
+        from ..readers.measurement import read_measurement
         return self._get(self.measurements, (path, reading),
                          lambda _key: read_measurement(path, **dict(reading)))
 

@@ -24,6 +24,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..defaults import LENGTH_UNITS
 from ..errors import UcsioError
 from ..geometry.arrays import flange_matrices
 from .measurement import Measurement, spec_orientation
@@ -97,14 +98,12 @@ def spread(points: np.ndarray) -> float:
 
 
 def _laser_units(meas: Measurement, current: str) -> Alternative | None:
-    from ..readers.laser import UNITS
-
     laser = spread(meas.laser)
     if not laser > 0:
         return None
     ratio = spread(meas.flange[:, :3, 3]) / laser
-    for unit, size in UNITS.items():
-        factor = size / UNITS[current]
+    for unit, size in LENGTH_UNITS.items():
+        factor = size / LENGTH_UNITS[current]
         if unit != current and abs(math.log(ratio / factor)) <= math.log(SPREAD_FACTOR):
             return Alternative(
                 _replace(meas, laser=meas.laser * factor), "laser_units", unit,

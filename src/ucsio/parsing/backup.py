@@ -20,43 +20,22 @@ import os
 
 from ..errors import UcsioError
 from ..values import Value
+from .sources import MEMBER_MARK, Source, open_zip, split_member
 
 TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
 if TYPE_CHECKING:
-    from .controller import ControllerFile
+    from .model import ControllerFile
 
 # SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
 BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls")
 # SPEC: a FANUC backup's binary files, listed as not read
 BINARY_SUFFIXES = (".tp", ".sv", ".vr")
-MEMBER_MARK = "!"
 
 
-class Source(Value):
-    """One controller file to read: ``name`` as shown and as frames' ``file``,
-    ``rel`` its path inside the backup it came from (for pairing two backups;
-    the base name for a file given on its own), and where its bytes are."""
-
-    __slots__ = ("name", "rel", "path", "archive", "member")
-
-    def __init__(self, name: str, rel: str, path: str | None = None,
-                 archive: str | None = None, member: str | None = None):
-        self.name, self.rel, self.path, self.archive, self.member = name, rel, path, archive, member
-
-    def read(self) -> bytes:
-        if self.archive is None:
-            from ..files import read_bytes
-            return read_bytes(self.path, "controller file")
-        return _read_member(self.archive, self.member, self.name)
-
-    def document(self):
-        from .document import Document
-        return Document(self.read(), self.name)
-
-    def load(self, full: bool = False):
-        """The parsed file (a UcsioError naming the file when it cannot be read)."""
-        from .controller import parse
-        return parse(self.document(), full=full)
+def load_source(source: Source, full: bool = False) -> ControllerFile:
+    """The parsed file (a UcsioError naming the file when it cannot be read)."""
+    from .controller import parse
+    return parse(source.document(), full=full)
 
 
 class Binary(Source):
@@ -100,17 +79,6 @@ class Failure(Value):
 
 def is_archive(path: str) -> bool:
     return path.lower().endswith(".zip") and os.path.isfile(path)
-
-
-def split_member(name: str) -> tuple[str, str] | None:
-    """``ARCHIVE.zip!path`` -> (archive, member) when the archive exists."""
-    i = name.lower().find(".zip" + MEMBER_MARK)
-    if i < 0:
-        return None
-    archive, member = name[:i + 4], name[i + 5:]
-    if not os.path.isfile(archive) or not member:
-        return None
-    return archive, member
 
 
 def is_member(name: str) -> bool:
@@ -184,23 +152,8 @@ def _fanuc_data(sources: list[Source], names) -> list[Source]:
     return out
 
 
-_OPEN: dict[str, object] = {}   # archive path -> ZipFile: its directory is read once per run
-
-
-def _open_zip(archive: str):
-    import zipfile   # only archives pay for it
-    zf = _OPEN.get(archive)
-    if zf is None:
-        try:
-            zf = zipfile.ZipFile(archive)
-        except (zipfile.BadZipFile, OSError, ValueError) as exc:
-            raise UcsioError(f"not a readable zip archive ({exc})", file=archive) from None
-        _OPEN[archive] = zf
-    return zf
-
-
 def archive_sources(archive: str) -> list[Source]:
-    zf = _open_zip(archive)
+    zf = open_zip(archive)
     names = [i.filename for i in zf.infolist() if not i.is_dir()]
     # rel: '/' separators even where a Windows tool wrote '\\' into the archive
     found = [_kind(n)(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
@@ -226,18 +179,6 @@ def _by_folder(sources: list[Source], names: list[str]) -> list[Source]:
         folder = s.rel.rpartition("/")[0].casefold()
         out += _fanuc_data([s], folders.get(folder, ()))
     return out
-
-
-def _read_member(archive: str, member: str, name: str) -> bytes:
-    import zipfile
-    zf = _open_zip(archive)
-    try:
-        return zf.read(member)
-    except KeyError:
-        raise UcsioError("no such file in the archive", file=name) from None
-    except (zipfile.BadZipFile, RuntimeError, NotImplementedError, OSError, EOFError) as exc:
-        # RuntimeError: an encrypted member; NotImplementedError: an unknown compression
-        raise UcsioError(f"cannot read from the archive ({exc})", file=name) from None
 
 
 def _kind(name: str):
@@ -268,7 +209,7 @@ def load_all(paths: list[str], full: bool = False):
                 not_read.append(s)
                 continue
             try:
-                parsed.append((s, s.load(full=full)))
+                parsed.append((s, load_source(s, full=full)))
             except Unsupported as exc:
                 if not many:
                     errors.append(exc)
@@ -291,7 +232,7 @@ def load_one(name: str, full: bool = False) -> ControllerFile:
     """A single controller file, which may be an archive member."""
     if is_member(name):
         archive, member = split_member(name)
-        return Source(name, member, archive=archive, member=member).load(full=full)
+        return load_source(Source(name, member, archive=archive, member=member), full=full)
     from .controller import load
     return load(name, full=full)
 

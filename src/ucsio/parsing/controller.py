@@ -1,18 +1,17 @@
-"""A parsed controller file: the document, its frames, and lint findings.
+"""Which parser reads a controller file, and the codes of check's findings.
 
 ``load(path)`` picks the vendor from the file's name and first words, so a
 KUKA ``.dat``, an ABB ``.mod`` and a FANUC ``.va``/``.ls``/``.dg`` go to
-the right parser.
+the right parser; each returns a ``parsing.model.ControllerFile``.
 """
 from __future__ import annotations
 
 import os
 
 from ..errors import UcsioError
-from ..geometry.frames import Frame
-from ..values import Value
 from .document import BOM, Document, looks_binary
 from .lalr import paused_gc
+from .model import ControllerFile
 
 ABB_SUFFIXES = {".mod", ".modx", ".sys", ".sysx", ".prg"}
 KUKA_SUFFIXES = {".dat", ".src", ".sub"}
@@ -79,71 +78,6 @@ FILE_CODES = {
 RETIRED: dict[str, str] = {}
 
 
-class Lint(Value):
-    """A finding of ``check``. A ``warning`` fails the check (exit 1); an
-    ``info`` is legal code worth knowing (a PERS whose value another module
-    gives) and does not."""
-
-    __slots__ = ("line", "col", "code", "message", "severity")
-
-    def __init__(self, line: int, col: int, code: str, message: str, severity: str = "warning"):
-        self.line, self.col, self.code, self.message = line, col, code, message
-        self.severity = severity
-
-    def as_dict(self) -> dict:
-        return {"line": self.line, "col": self.col, "code": self.code, "message": self.message,
-                "severity": self.severity}
-
-
-class ControllerFile:
-    def __init__(self, document: Document, vendor: str):
-        self.document = document
-        self.vendor = vendor
-        self.frames: list[Frame] = []
-        self.lints: list[Lint] = []
-        # vendor-specific extras (KUKA tables, ABB declarations); parsers fill them.
-        self.extra: dict = {}
-
-    @property
-    def path(self) -> str:
-        return self.document.path
-
-    def lint(self, offset: int, code: str, message: str, severity: str = "warning") -> None:
-        line, col = self.document.line_col(offset)
-        self.lints.append(Lint(line, col, code, message, severity))
-
-    def matches(self, name: str) -> list[Frame]:
-        """Frames called ``name`` (case-insensitive). A frame's own name wins
-        over a label: a KUKA base labelled "BASE_DATA[1]" cannot take the
-        place of the real BASE_DATA[1]. A FANUC frame's name (UF2, UT3@2)
-        names that frame only: where the file does not set it, a frame
-        commented "UF2" (UFRAME[1:UF2]) is not it."""
-        key = name.strip().casefold()
-        by_name = [f for f in self.frames if f.name.casefold() == key]
-        if by_name:
-            return by_name
-        if self.vendor == "fanuc":
-            from .fanuc import is_frame_name
-            if is_frame_name(key):
-                return []
-        return [f for f in self.frames if f.label is not None and f.label.casefold() == key]
-
-    def frame(self, name: str) -> Frame:
-        """The frame called ``name`` (case-insensitive; KUKA labels too)."""
-        found = self.matches(name)
-        if not found:
-            from ..errors import did_you_mean
-            names = [f.name for f in self.frames] + [f.label for f in self.frames if f.label]
-            hint = did_you_mean(name.strip(), names)
-            raise UcsioError(f"no frame named {name!r}{hint} (ucsio frames lists them)",
-                             file=self.path)
-        distinct = {id(f) for f in found}
-        if len(distinct) > 1:
-            which = ", ".join(f"{f.name} (line {f.line})" for f in found)
-            raise UcsioError(f"frame name {name!r} is ambiguous: {which}", file=self.path)
-        return found[0]
-
-
 def detect_vendor(doc: Document) -> str:
     suffix = os.path.splitext(doc.path)[1].lower()
     if suffix in ABB_SUFFIXES:
@@ -183,10 +117,23 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
             from . import rapid
             return rapid.parse(doc, full=full)
         if vendor == "fanuc":
-            from . import fanuc
-            return fanuc.parse(doc, full=full, beside=beside)
+            return _parse_fanuc(doc, full, beside)
         from . import krl
         return krl.parse(doc, full=full)
+
+
+def _parse_fanuc(doc: Document, full: bool, beside: bool) -> ControllerFile:
+    """FANUC's three readers, by the listing's kind."""
+    from . import fanuc
+    kind = fanuc.kind_of(doc)
+    if kind == "va":
+        from . import va
+        return va.parse(doc, full=full, beside=beside)
+    if kind == "ls":
+        from . import tp
+        return tp.parse(doc, full=full)
+    from . import dg
+    return dg.parse(doc, full=full)
 
 
 def _binary_error(doc: Document) -> UcsioError:

@@ -24,8 +24,8 @@ from __future__ import annotations
 from ..geometry.frames import Number, Pose
 from ..values import Value
 from . import fanuc, regex
-from .controller import ControllerFile
 from .document import Document, Span, lf_lines
+from .model import ControllerFile
 
 _N = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"
 _TABLES = {"tool frame": "UTOOL", "jog frame": None, "user frame": "UFRAME"}
@@ -56,7 +56,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     """A .dg file: frame.dg and curpos.dg are read (and refused, with
     file:line:col, where their lines break the layout); any other listing
     is listed as such."""
-    cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
+    cf = fanuc.controller_file(doc)
     text = doc.text
     if not text.strip():
         raise doc.error("empty file: no FANUC listing", 0)

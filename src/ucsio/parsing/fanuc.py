@@ -26,6 +26,7 @@ import os
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, Pose
 from .document import Document
+from .model import ControllerFile
 
 VENDOR = "fanuc"
 SUFFIXES = (".va", ".dg", ".ls")
@@ -52,6 +53,14 @@ def is_frame_name(name: str) -> bool:
     import re
     return re.fullmatch(r"\s*u[ft]\s*(?:[0-9]+|\[.*\])\s*(?:@\s*[0-9]+)?\s*", name,
                         re.I | re.S) is not None
+
+
+def controller_file(doc: Document) -> ControllerFile:
+    """An empty FANUC ControllerFile: a name of a frame's form (UF2) names
+    that frame only, never a frame commented so."""
+    cf = ControllerFile(document=doc, vendor=VENDOR)
+    cf.name_form = is_frame_name
+    return cf
 
 
 def make_frame(doc: Document, ftype: str, number, group: int, line: int,
@@ -132,28 +141,18 @@ def sniff(doc: Document) -> bool:
     return False
 
 
-def parse(doc: Document, full: bool = False, beside: bool = True):
-    kind = kind_of(doc)
-    if kind == "va":
-        from . import va
-        return va.parse(doc, full=full, beside=beside)
-    if kind == "ls":
-        from . import tp
-        return tp.parse(doc, full=full)
-    from . import dg
-    return dg.parse(doc, full=full)
-
-
 # -- the frames' comments, from the files beside sysframe.va -------------------------
 LABEL_FILES = ("framevar.va", "frame.dg")
 
 
-def labels_beside(path: str) -> tuple[dict, list[UcsioError]]:
+def labels_beside(path: str, readers: dict) -> tuple[dict, list[UcsioError]]:
     """The frames' comments the files beside ``path`` give: ``FRAMEVAR.VA``
     (SETUP_DATA[g,1,n].$COMMENT for tool n, [g,3,n] for user frame n) and
     ``frame.dg`` (its Tool Frame and User Frame tables, group 1), names
     matched case-insensitively. Returns ({(type, n, group): label}, errors
-    of files that could not be read); FRAMEVAR.VA wins where both give one."""
+    of files that could not be read); FRAMEVAR.VA wins where both give one.
+    ``readers`` maps each of LABEL_FILES to the function that reads its
+    Document's comments (the va and dg readers, which import this module)."""
     found = _beside(path) if os.path.isfile(path) or ".zip!" in path.lower() else {}
     labels: dict = {}
     errors: list[UcsioError] = []
@@ -162,7 +161,7 @@ def labels_beside(path: str) -> tuple[dict, list[UcsioError]]:
         if src is None:
             continue
         try:
-            labels.update(_labels_of(src))
+            labels.update(_labels_of(src, readers[name]))
         except UcsioError as exc:
             if exc.file is None:
                 exc.file = src.name
@@ -173,14 +172,13 @@ def labels_beside(path: str) -> tuple[dict, list[UcsioError]]:
 def _beside(path: str) -> dict:
     """{lower-case name: Source} of the label files in ``path``'s folder (or,
     for ``ARCHIVE.zip!dir/file``, beside it in the archive)."""
-    from .backup import Source, split_member
+    from .sources import Source, open_zip, split_member
     member = split_member(path) if ".zip" in path.lower() else None
     if member is not None:
         archive, inner = member
-        from .backup import _open_zip
         folder = inner.replace("\\", "/").rpartition("/")[0]
         out = {}
-        for info in _open_zip(archive).infolist():
+        for info in open_zip(archive).infolist():
             n = info.filename.replace("\\", "/")
             d, _, base = n.rpartition("/")
             if d.casefold() == folder.casefold() and base.lower() in LABEL_FILES:
@@ -204,7 +202,7 @@ def _beside(path: str) -> dict:
 _LABEL_CACHE: dict = {}
 
 
-def _labels_of(src) -> dict:
+def _labels_of(src, read) -> dict:
     """A label file's comments, read once per run for each (file, size, time):
     the sysframe.va of every robot in a folder of backups asks for its own."""
     key = src.name
@@ -218,13 +216,7 @@ def _labels_of(src) -> dict:
     got = _LABEL_CACHE.get(key)
     if got is not None and got[0] == stamp and stamp is not None:
         return got[1]
-    doc = Document(src.read(), src.name)
-    if src.rel.lower().endswith(".dg"):
-        from . import dg
-        labels = dg.frame_labels(doc)
-    else:
-        from . import va
-        labels = va.frame_comments(doc)
+    labels = read(Document(src.read(), src.name))
     _LABEL_CACHE[key] = (stamp, labels)
     return labels
 
@@ -249,8 +241,8 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
     from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
 
     if isinstance(exc, (UnexpectedCharacters, UnexpectedToken)):
-        from .krl import _bad_number      # '1.2.3', '1e', '12ab': the same words in every listing
-        bad = _bad_number(text, exc.pos_in_stream if isinstance(exc, UnexpectedCharacters)
+        from .numbers import bad_number
+        bad = bad_number(text, exc.pos_in_stream if isinstance(exc, UnexpectedCharacters)
                           else exc.token.start_pos if exc.token.type != "$END" else len(text))
         if bad is not None:
             return doc.error(f"{what}: malformed number {text[bad[0]:bad[1]][:30]!r}", bad[0])

@@ -51,9 +51,10 @@ from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
 from . import regex
-from .controller import ControllerFile
 from .document import Document, Span, lf_lines, masked
 from .lalr import Rejected, Token, Tree, paused_gc
+from .model import ControllerFile
+from .numbers import bad_number
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -110,7 +111,6 @@ _BRACED = regex.lazy(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
 _ASSIGN_LHS = regex.lazy(r"[ \t\f\r]*[A-Za-z_$][\w$]*[ \t\f\r]*(?:\[[^\]]*\][ \t\f\r]*)?\Z")
 # error reporting only: compiled when needed
 _STATEMENT_BEFORE = r"^[ \t\f\r]*[^\s;&]"
-_NUMBER = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z"
 # the field and the NUMBER token the grammar reads as its value
 _MACH_DEF_INDEX = regex.lazy(r"MACH_DEF_INDEX[ \t\f\r]*(?:\[[ \t\f\r]*\][ \t\f\r]*)?"
                              r"([+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)",
@@ -435,7 +435,7 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
 
     if isinstance(exc, UnexpectedCharacters):
         pos = exc.pos_in_stream
-        bad = _bad_number(text, pos)
+        bad = bad_number(text, pos)
         if bad:
             return doc.error(f"malformed number {_short(text[bad[0]:bad[1]])!r}", bad[0])
         ch = text[pos]
@@ -455,7 +455,7 @@ def _raise_syntax(doc: Document, text: str, exc: Exception):
                 return doc.error("missing ENDDAT: the DEFDAT data list is never closed", pos)
             return doc.error("unexpected end of file" + _expecting(expected), pos)
         pos = tok.start_pos
-        bad = _bad_number(text, pos)
+        bad = bad_number(text, pos)
         if bad:
             return doc.error(f"malformed number {_short(text[bad[0]:bad[1]])!r}", bad[0])
         if tok.type == "_NL":
@@ -507,23 +507,6 @@ def _expecting(expected: set) -> str:
     if not words or len(words) > 6:
         return ""
     return "; expected " + " or ".join(words)
-
-
-def _bad_number(text: str, pos: int):
-    """(start, end) of a malformed number around ``pos`` ('1.2.3', '1e', '12ab')."""
-    n = len(text)
-    s = pos
-    while s > 0 and (text[s - 1].isalnum() or text[s - 1] in "._+-$"):
-        s -= 1
-    e = pos
-    while e < n and (text[e].isalnum() or text[e] in "._+-$"):
-        e += 1
-    word = text[s:e]
-    if not word or not (word[0].isdigit() or word[0] in ".+-"):
-        return None
-    if not any(c.isdigit() for c in word) or re.match(_NUMBER, word):
-        return None
-    return s, e
 
 
 def _parse(doc: Document, text: str, start: str, lark_first: bool = False):

@@ -29,11 +29,11 @@ import re
 from ..errors import MAX_NESTING, TooDeep, UcsioError
 from ..geometry.frames import Frame, Number, Pose
 from ..values import Value
-from .controller import ControllerFile
 from .document import Document, Span
 from . import regex
 from .grammar import grammar_dir
 from .lalr import Rejected, Token, Tree
+from .model import ControllerFile
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)

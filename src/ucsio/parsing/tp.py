@@ -47,9 +47,9 @@ from ..errors import UcsioError
 from ..geometry.frames import Number
 from ..values import Value
 from . import fanuc, regex
-from .controller import ControllerFile
 from .document import Document, Span, lf_lines, small_int
 from .lalr import Rejected, Tree
+from .model import ControllerFile
 
 START = ("file",)
 AXES = fanuc.COMPONENTS
@@ -112,7 +112,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     through the grammar first."""
     text = _lines(doc)
     if not is_program(text):
-        cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
+        cf = fanuc.controller_file(doc)
         cf.extra["kind"] = "listing"
         return cf
     if full:
@@ -195,7 +195,7 @@ class _Register:
 
 
 def _interpret(doc: Document, tree: Tree) -> ControllerFile:
-    cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
+    cf = fanuc.controller_file(doc)
     cf.extra["kind"] = "program"
     group = 1
     for node in tree.children:

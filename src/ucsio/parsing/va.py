@@ -44,9 +44,9 @@ import re
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number, ShiftedNumbers
 from . import fanuc, regex
-from .controller import ControllerFile
 from .document import Document, Span, lf_lines, masked, small_int
 from .lalr import Rejected, Tree
+from .model import ControllerFile
 
 START = ("file",)
 FRAME_RECORDS = {"$MNUFRAME": "UFRAME", "$MNUTOOL": "UTOOL"}
@@ -438,7 +438,7 @@ def _moved(numbers: dict, delta: int):
 # -- frames ---------------------------------------------------------------------------
 def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True,
                plain: dict | None = None) -> ControllerFile:
-    cf = ControllerFile(document=doc, vendor=fanuc.VENDOR)
+    cf = fanuc.controller_file(doc)
     recs = records(tree, doc, shared, plain)
     names = {r.name.upper() for r in recs}
     cf.extra["records"] = [r.name for r in recs]
@@ -446,7 +446,7 @@ def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True,
     cf.extra["kind"] = ("sysframe" if frame_recs else "posreg" if "$POSREG" in names
                         else "framevar" if "SETUP_DATA" in names else "variables")
     if frame_recs:
-        labels, errors = fanuc.labels_beside(doc.path) if beside else ({}, [])
+        labels, errors = _labels_beside(doc.path) if beside else ({}, [])
         for exc in errors:
             cf.lint(0, "label-source", f"{_where(exc)} could not be read ({exc.message}): "
                                        "frames listed without its comments", severity="info")
@@ -460,6 +460,11 @@ def _interpret(doc: Document, tree: Tree, shared: dict, beside: bool = True,
 def _where(exc: UcsioError) -> str:
     import os
     return os.path.basename(exc.file or "") or "a file beside it"
+
+
+def _labels_beside(path: str) -> tuple[dict, list]:
+    from . import dg
+    return fanuc.labels_beside(path, {"framevar.va": frame_comments, "frame.dg": dg.frame_labels})
 
 
 def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: dict) -> None:

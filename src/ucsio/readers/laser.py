@@ -25,11 +25,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..defaults import LENGTH_UNITS
 from ..errors import UcsioError
 from .text import SEPARATORS, content_lines, coordinates, number, read_text, split
-
-UNITS = {"mm": 1.0, "m": 1000.0, "in": 25.4}
-
 
 @dataclass
 class LaserPoints:
@@ -50,7 +48,7 @@ def is_spec_csv(text: str) -> bool:
 
 
 def spec_csv(text: str, path: str) -> LaserPoints:
-    from ..method.measurement import parse_measurement
+    from .measurement import parse_measurement
 
     m = parse_measurement(text, path, sides=("laser",))
     return LaserPoints(path, "csv", m.names, m.lines, m.laser, m.weights)
@@ -96,15 +94,15 @@ FORMATS = (
 def read_laser(path: str | os.PathLike, units: str = "mm") -> LaserPoints:
     """The laser side of a measurement, in mm, whatever the export format."""
     path = os.fspath(path)
-    if units not in UNITS:
-        raise UcsioError(f"--laser-units {units!r}: expected one of {', '.join(UNITS)}")
+    if units not in LENGTH_UNITS:
+        raise UcsioError(f"--laser-units {units!r}: expected one of {', '.join(LENGTH_UNITS)}")
     text = read_text(path, "laser file")
     for _name, recognises, read in FORMATS:
         if recognises(text):
             points = read(text, path)
             break
     if units != "mm":
-        points.xyz = points.xyz * UNITS[units]
+        points.xyz = points.xyz * LENGTH_UNITS[units]
         _within_magnitude(points, units)
     return points
 

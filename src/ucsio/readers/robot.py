@@ -101,7 +101,7 @@ def _matrix(pose: Pose) -> np.ndarray:
 # ---------------------------------------------------------------- CSV
 
 def spec_csv(path: str, **reading) -> RobotPoses:
-    from ..method.measurement import read_measurement
+    from .measurement import read_measurement
 
     m = read_measurement(path, sides=("robot",), what="robot file", **reading)
     poses = [RobotPose(n, n, ln, None, m.flange[i], written=m.orientation[i])

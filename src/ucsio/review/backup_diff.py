@@ -13,7 +13,8 @@ from __future__ import annotations
 
 
 from ..errors import UcsioError
-from ..parsing.backup import Binary, Failure, Source, expand
+from ..parsing.backup import Binary, Failure, expand, load_source
+from ..parsing.sources import Source
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -63,7 +64,7 @@ def _frame_names(src: Source, errors: list) -> list[str]:
     if isinstance(src, Binary):
         return []
     try:
-        return [f.name for f in src.load().frames]
+        return [f.name for f in load_source(src).frames]
     except UcsioError as exc:
         errors.append(exc)
         return []

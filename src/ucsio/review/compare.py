@@ -18,8 +18,9 @@ import os
 
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
-from ..parsing.controller import ControllerFile, parse
+from ..parsing.controller import parse
 from ..parsing.document import Document, text_lines
+from ..parsing.model import ControllerFile
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
 from .unset import is_set, warning as unset_warning

@@ -14,7 +14,7 @@ from ..parsing import regex
 TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
 if TYPE_CHECKING:
     from ..geometry.frames import Frame
-    from ..parsing.controller import ControllerFile
+    from ..parsing.model import ControllerFile
 
 _ELEMENT = regex.lazy(r"\s*([A-Za-z_$][\w$]*)\s*(?:\[\s*([+-]?\d+)\s*\]|\{\s*([+-]?\d+)\s*\})\s*\Z")
 

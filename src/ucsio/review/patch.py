@@ -43,8 +43,9 @@ from ..files import atomic_write, write_target
 from ..geometry import rotations as rot
 from ..geometry.frames import Frame, Number, Pose
 from ..parsing import regex
-from ..parsing.controller import ABB_SUFFIXES, ControllerFile, parse
+from ..parsing.controller import ABB_SUFFIXES, parse
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
+from ..parsing.model import ControllerFile
 from ..values import Value
 from .names import find_frame
 

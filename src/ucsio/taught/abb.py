@@ -25,14 +25,15 @@ import os
 import re
 from pathlib import Path
 
-from . import Found, TaughtPoint, files_around, is_same_file, same_folder
+from .base import Found, TaughtPoint, files_around, is_same_file, same_folder
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Number
 from ..geometry.rotations import quat_to_matrix, matvec
 from ..parsing import rapid, regex
-from ..parsing.controller import ABB_SUFFIXES, ControllerFile
+from ..parsing.controller import ABB_SUFFIXES
 from ..parsing.document import Document, Span
 from ..parsing.lalr import Rejected, Token, Tree
+from ..parsing.model import ControllerFile
 
 # One statement: everything up to the next ';' outside strings and comments.
 _STATEMENT = regex.lazy(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')

@@ -19,11 +19,11 @@ from __future__ import annotations
 
 import re
 
-from . import Found, TaughtPoint, cached_reader, files_around, is_same_file
+from .base import Found, TaughtPoint, cached_reader, files_around, is_same_file
 from ..errors import UcsioError
 from ..geometry.frames import Frame
 from ..parsing import krl
-from ..parsing.controller import ControllerFile
+from ..parsing.model import ControllerFile
 from ..parsing.document import Document
 
 _BASE_ENTRY = re.compile(r"BASE_DATA\[(\d+)\]\Z", re.I)
