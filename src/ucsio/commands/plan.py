@@ -111,14 +111,15 @@ def read_plan(plan, joint: bool, *, robot=None, config=None, map=None,
     for opt, given in (("--config", config), ("--map", map)):
         if given is not None and robot is None:
             raise UcsioError(f"{opt} goes with --robot")
+    from ..defaults import LENGTH_UNITS
     from ..readers import laser
-    if laser_units not in laser.UNITS:
+    if laser_units not in LENGTH_UNITS:
         raise UcsioError(f"--laser-units {laser_units!r}: expected one of "
-                         f"{', '.join(laser.UNITS)}")
+                         f"{', '.join(LENGTH_UNITS)}")
     if has_robot:
         from ..readers.measurement import parse_measurement
         m = parse_measurement(text, plan)
-        return (Planned(plan, m.names, m.lines, m.laser * laser.UNITS[laser_units], m.weights,
+        return (Planned(plan, m.names, m.lines, m.laser * LENGTH_UNITS[laser_units], m.weights,
                         m.flange), warnings)
     lp = laser.read_laser(plan, laser_units)
     if robot is None:
