@@ -117,11 +117,13 @@ def _mark_shown(node: Node, shown: Callable[[Frame], bool]) -> bool:
 
 
 def _robots_first(world: Node) -> None:
-    """The robots (their flanges and tools) first, in group order; then the
-    rest in the files' order."""
+    """The robots first, in group order, each with its flange (and the tools
+    on it) first; then the rest in the files' order."""
     robots = sorted((n for n in world.children if n.kind == "robot"),
                     key=lambda n: (len(n.name), n.name))
     world.children = robots + [n for n in world.children if n.kind != "robot"]
+    for r in robots:
+        r.children.sort(key=lambda n: n.kind != "flange")      # stable: the rest keep order
 
 
 def as_dict(node: Node, frame_dict: Callable[[Frame], dict[str, Any]]) -> dict[str, Any]:
