@@ -54,6 +54,21 @@ def test_abb_moving_user_frame_without_a_unit_name(tmp_path, capsys):
     assert got["wMoving.oframe"] == ("frame", "wMoving")
 
 
+def test_parents_inside_an_archive(tmp_path, capsys):
+    """A backup's frames carry their parent too (here a .zip member)."""
+    import zipfile
+    archive = tmp_path / "backup.zip"
+    with zipfile.ZipFile(archive, "w") as z:
+        z.write(CELL, "RAPID/TASK1/PROGMOD/cell.mod")
+        z.write(GROUPS, "FANUC/sysframe.va")
+    got = parents(capsys, archive)
+    assert got["wobjSpec.oframe"] == ("frame", "wobjSpec")
+    assert got["UT1@2"] == ("flange", "flange@2")
+    assert main(["frames", "--tree", str(archive)]) == 0
+    out = capsys.readouterr().out
+    assert "├── robot@2" in out and "├── STN_1 (moves the frames below)" in out
+
+
 def test_kuka_parents(capsys):
     got = parents(capsys, REFS)
     assert got["BASE_DATA[1]"] == ("world", "world")
