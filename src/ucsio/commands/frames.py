@@ -133,7 +133,8 @@ def load_each(paths: list[str]):
 
 
 def trees(per_input, show_all: bool):
-    """(path, roots) per input, unset frames pruned unless ``show_all``."""
+    """(path, roots, the file of each frame by id) per input, unset frames
+    pruned unless ``show_all``."""
     from ..geometry.tree import build
     from ..review.unset import is_set
     out = []
@@ -181,6 +182,7 @@ def _node_text(cf_of):
 def run_tree(args) -> int:
     from . import report_failures
     from ..geometry.tree import as_dict, lines
+    from ..review.unset import is_set
 
     per_input, errors, not_read = load_each(args.files)
     built = trees(per_input, args.all)
@@ -197,7 +199,7 @@ def run_tree(args) -> int:
             for root in roots:
                 print("\n".join(lines(root, _node_text(cf_of))))
         hidden = sum(1 for _, pcs in per_input for _, c in pcs for f in c.frames
-                     if not _is_set(f, c))
+                     if not is_set(f, c))
         if hidden and not args.all:
             print(f"{hidden} unset frame{'s' if hidden != 1 else ''} not shown (all six values "
                   "0 and no name: the controller's defaults; --all shows them)")
@@ -205,8 +207,3 @@ def run_tree(args) -> int:
             print(_not_read_line(not_read))
     report_failures(errors)
     return 2 if errors else 0
-
-
-def _is_set(f, cf) -> bool:
-    from ..review.unset import is_set
-    return is_set(f, cf)
