@@ -219,3 +219,24 @@ def test_a_missing_or_circular_parent_frame_hangs_under_unknown():
     assert [n.name for n in world.children] == ["d"]
     assert [n.name for n in world.children[0].children] == ["c"]
     assert [n.name for n in unknown.children] == ["a", "b", "orphan", "e"]   # e: not its file
+
+
+def test_tree_is_bold_on_a_terminal_unless_no_color(monkeypatch):
+    import io
+    import sys
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    def run() -> str:
+        out = Terminal()
+        monkeypatch.setattr(sys, "stdout", out)
+        assert main(["frames", "--tree", str(CELL)]) == 0
+        return out.getvalue()
+
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    monkeypatch.setenv("TERM", "xterm")
+    assert run().startswith("\033[1mworld\033[0m\n")
+    monkeypatch.setenv("NO_COLOR", "1")
+    assert run().startswith("world\n├── robot\n")
