@@ -117,7 +117,7 @@ def test_shared_definitions_are_the_same_in_every_schema():
 def test_the_schemas_require_spec_s_keys():
     """SPEC's "JSON keys that scripts rely on": a document missing one fails."""
     frames = schema("frames")["$defs"]["frame"]
-    assert set("name file line vendor type x y z a b c q".split()) <= set(frames["required"])
+    assert set("name file line vendor type parent x y z a b c q".split()) <= set(frames["required"])
     assert frames["then"]["required"] == ["group", "w", "p", "r"]        # FANUC items
     solve = schema("solve")["$defs"]["solve"]
     assert set("frame points n_points n_used rms mean max accepted".split()) <= \

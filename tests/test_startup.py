@@ -28,7 +28,7 @@ def test_light_commands_import_no_numpy_or_scipy(tmp_path):
     mod = FIXTURES / "abb" / "two_modules_crcrlf.prg"
     sol = tmp_path / "sol.json"
     sol.write_text(json.dumps({"frame": {"x": 101, "y": 200, "z": 300, "a": 0, "b": 0, "c": 0}}))
-    for args in (["frames", mod], ["check", mod], ["diff", mod, mod],
+    for args in (["frames", mod], ["frames", "--tree", mod], ["check", mod], ["diff", mod, mod],
                  ["diff", "--textconv", mod],
                  ["diff", mod, "--frame", "wobjA", "--measured", sol],
                  ["diff", mod, "--frame", "wobjA", "--measured", sol, "--points"],

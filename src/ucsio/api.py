@@ -89,7 +89,7 @@ def frame(path: PathLike | ControllerFile, name: str) -> Frame:
 def frames(paths: Paths | ControllerFile) -> FramesResult:
     """``ucsio frames --json``: every frame of controller files, backup
     folders or .zip archives (``frames``: ``name file line vendor type
-    reference x y z a b c q label set``; poses in each frame's own
+    reference parent parent_kind x y z a b c q label set``; poses in each frame's own
     reference, mm and deg). One plain file that cannot be read raises; of
     many, the unreadable ones are listed in ``errors``."""
     from .commands import frames as command

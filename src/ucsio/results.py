@@ -169,7 +169,10 @@ class FrameItem(Result):
     """One frame of a controller file: where (``file``, ``line``), what
     (``vendor`` abb, kuka or fanuc, ``type`` wobjdata, tooldata, BASE_DATA,
     UFRAME, ..., ``reference`` the frame it is relative to: world, flange, a
-    uframe), its pose (``x y z`` mm, ``a b c`` deg, ``q``; None where the
+    uframe; ``parent`` the same as a node of the frame tree: 'world',
+    'robot', 'flange', 'robot@2', another frame's name, a unit's name, or
+    'unknown', ``parent_kind`` which of those), its pose (``x y z`` mm,
+    ``a b c`` deg, ``q``; None where the
     file gives no literal value), ``label`` where the file names it, ``set``
     (False for an unset KUKA or FANUC entry); FANUC's ``group`` and ``w p r``
     (deg; w = c, p = b, r = a)."""
@@ -179,6 +182,8 @@ class FrameItem(Result):
     vendor: str
     type: str
     reference: str | None
+    parent: str
+    parent_kind: str
     x: float | None
     y: float | None
     z: float | None

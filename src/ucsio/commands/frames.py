@@ -14,7 +14,15 @@ Unset frames (KUKA configuration entries and FANUC sysframe.va entries whose
 six values are all 0 and that have no name: the controller's defaults, which
 fill most of a $config.dat or a sysframe.va) are counted in one line, not
 listed; --all lists them too. --json always
-holds every frame, each with "set" (true or false)."""
+holds every frame, each with "set" (true or false) and "parent" (what it is
+relative to).
+
+--tree prints the hierarchy of each FILE (a backup: of all its files): world
+at the top, the robot (robot@2 for motion group 2) with its flange and the
+tools on it, the user frames, bases and work objects, each object frame
+under its work object's user frame, and the units (an ABB mechanical unit, a
+KUKA external kinematic) with the frames they move. With --json: "tree", one
+nested structure per FILE, beside the listing's keys."""
 from __future__ import annotations
 
 from ..output import emit_json, fmt, table
@@ -27,6 +35,9 @@ def add_arguments(p) -> None:
     p.add_argument("--all", action="store_true",
                    help="also list unset frames (KUKA and FANUC entries all 0 and without a "
                         "name)")
+    p.add_argument("--tree", action="store_true",
+                   help="print the hierarchy: world, robots, flanges, units and each frame "
+                        "under what it is relative to")
 
 
 def document(parsed, errors, not_read=()) -> dict:
@@ -44,6 +55,8 @@ def run(args) -> int:
     from . import load_inputs, report_failures
     from ..review.unset import is_set
 
+    if args.tree:
+        return run_tree(args)
     parsed, errors, not_read = load_inputs(args.files)
     status = 2 if errors else 0
     if args.json:
@@ -100,3 +113,97 @@ def _not_read_line(not_read) -> str:
                 "or other controllers' files (check lists each with why)")
     return (f"{n} binary FANUC file{'s' if n != 1 else ''} not read ({what}): ucsio reads "
             "their ASCII twins (.ls, .va)")
+
+
+# ------------------------------------------------------------------ --tree
+
+def load_each(paths: list[str]):
+    """load_inputs, one input at a time: ([(path, parsed)], errors, not_read),
+    so that each FILE (a backup: all its files) is one tree."""
+    from ..parsing.backup import load_all, single_input
+    per_input, errors, not_read = [], [], []
+    for path in paths:
+        parsed, errs, skipped = load_all([path])
+        per_input.append((path, parsed))
+        errors += errs
+        not_read += skipped
+    if errors and single_input(paths):
+        raise errors[0]
+    return per_input, errors, not_read
+
+
+def trees(per_input, show_all: bool):
+    """(path, roots, the file of each frame by id) per input, unset frames
+    pruned unless ``show_all``."""
+    from ..geometry.tree import build
+    from ..review.unset import is_set
+    out = []
+    for path, parsed in per_input:
+        file_of = {id(f): c for _, c in parsed for f in c.frames}
+        frames = [f for _, c in parsed for f in c.frames]
+        out.append((path, build(frames, lambda f: show_all or is_set(f, file_of[id(f)])),
+                    file_of))
+    return out
+
+
+def _node_json(cf_of):
+    from ..review.unset import is_set
+
+    def frame_keys(f) -> dict:
+        d = {"type": f.type, "file": f.file, "line": f.line, "set": is_set(f, cf_of[id(f)])}
+        if f.label is not None:
+            d["label"] = f.label
+        return d
+    return frame_keys
+
+
+def _node_text(cf_of):
+    from ..output import paint
+    from ..review.unset import is_set
+    places = {"unit": " (moves the frames below)",
+              "unknown": " (the file does not say what these are relative to)"}
+
+    def label(node) -> str:
+        f = node.frame
+        if f is None:
+            return paint(node.name, "head") + places.get(node.kind, "")
+        words = [f.name, f.type]
+        role = f.info.get("role")
+        if role in ("external_tcp", "workpiece"):   # as the listing says it
+            words.append(f"({role.replace('_', ' ')})")
+        if f.label:
+            words.append(f'"{f.label}"')
+        if not is_set(f, cf_of[id(f)]):
+            words.append("(unset)")
+        return "  ".join(words + [f"{f.file}:{f.line}"])
+    return label
+
+
+def run_tree(args) -> int:
+    from . import report_failures
+    from ..geometry.tree import as_dict, lines
+    from ..review.unset import is_set
+
+    per_input, errors, not_read = load_each(args.files)
+    built = trees(per_input, args.all)
+    if args.json:
+        parsed = [pc for _, pcs in per_input for pc in pcs]
+        doc = document(parsed, errors, not_read)
+        doc["tree"] = [{"input": path, "roots": [as_dict(r, _node_json(cf_of)) for r in roots]}
+                       for path, roots, cf_of in built]
+        emit_json(doc)
+    else:
+        for i, (path, roots, cf_of) in enumerate(built):
+            if len(built) > 1:
+                print(("\n" if i else "") + f"{path}:")
+            for root in roots:
+                print("\n".join(lines(root, _node_text(cf_of))))
+        hidden = sum(1 for _, pcs in per_input for _, c in pcs for f in c.frames
+                     if not is_set(f, c))
+        if hidden and not args.all:
+            print(f"{hidden} unset frame{'s' if hidden != 1 else ''} not shown (all six values "
+                  "0 and no name: the controller's defaults; --all shows them)")
+        if not_read:
+            print(_not_read_line(not_read))
+    report_failures(errors)
+    return 2 if errors else 0

@@ -213,15 +213,66 @@ def number_texts(numbers, memo: dict | None = None) -> dict[str, str]:
     return got
 
 
+class Parent(Value):
+    """What a frame's pose is relative to (p_parent = R·p_frame + t): a node
+    of a controller's frame tree, vendor-free. ``kind``:
+
+    - ``world``: the cell's world (``name`` 'world');
+    - ``robot``: a robot's base, or the world a robot keeps fixed to its base
+      (``name`` 'robot', 'robot@2' for a controller's motion group 2);
+    - ``flange``: a robot's flange, where its tools hang ('flange', 'flange@2');
+    - ``frame``: another frame of the same file, by its ``name`` (an ABB
+      object frame in its work object's user frame);
+    - ``unit``: a mechanical unit or external kinematic that moves the frame,
+      by its ``name`` ('STN1', 'MACHINE_DEF[2]');
+    - ``unknown``: the file does not say ('unknown').
+
+    Frames defined on other frames (Yaskawa's user frame k, Stäubli's
+    fFather) are ``frame`` parents; a robot's nodes carry its group."""
+    __slots__ = ("kind", "name")
+
+    def __init__(self, kind: str, name: str):
+        self.kind = kind
+        self.name = name
+
+    def __str__(self) -> str:
+        return self.name
+
+
+WORLD = Parent("world", "world")
+UNKNOWN = Parent("unknown", "unknown")
+# what a frame whose parser names no Parent is relative to, by its reference
+_PARENT_OF_REFERENCE = {"world": WORLD, "flange": Parent("flange", "flange")}
+
+
+def robot(group: int = 1) -> Parent:
+    """The base (world) of a controller's robot; group 1 is 'robot'."""
+    return Parent("robot", "robot" if group == 1 else f"robot@{group}")
+
+
+def flange(group: int = 1) -> Parent:
+    """The flange of a controller's robot; group 1 is 'flange'."""
+    return Parent("flange", "flange" if group == 1 else f"flange@{group}")
+
+
+def unit(name: str | None) -> Parent:
+    """A mechanical unit or external kinematic (unnamed: 'mechanical unit')."""
+    return Parent("unit", name or "mechanical unit")
+
+
+def frame_parent(name: str) -> Parent:
+    return Parent("frame", name)
+
+
 class Frame(Value):
     __slots__ = ("name", "vendor", "type", "pose", "file", "line", "reference", "label",
-                 "numbers", "info", "document")
+                 "numbers", "info", "_parent", "document")
     _compare = __slots__[:-1]   # the document is where it came from, not what it is
 
     def __init__(self, name: str, vendor: str, type: str, pose: Pose | None, file: str, line: int,
                  reference: str = "world", label: str | None = None,
                  numbers: dict[str, Number] | None = None, info: dict[str, Any] | None = None,
-                 document: Document | None = None):
+                 document: Document | None = None, parent: Parent | None = None):
         self.name = name            # 'wobj1', 'wobj1.oframe', 'tools{2}', 'BASE_DATA[3]', 'UF3@2'
         self.vendor = vendor        # 'abb' | 'kuka' | 'fanuc'
         self.type = type            # 'wobjdata', 'tooldata', 'pose', 'BASE_DATA', 'TOOL_DATA',
@@ -234,7 +285,19 @@ class Frame(Value):
         # component name ('x','y','z','q1'..'q4' or 'a','b','c') -> Number in the document
         self.numbers = numbers if numbers is not None else {}
         self.info = info if info is not None else {}   # robhold, ufprog, ufmec, load, storage, ...
+        self._parent = parent       # None: the one its reference names (world, flange)
         self.document = document
+
+    @property
+    def parent(self) -> Parent:
+        """What the frame is relative to (Parent); a parser sets it where the
+        reference alone does not say (a frame, a unit, a motion group)."""
+        got = self._parent
+        return got if got is not None else _PARENT_OF_REFERENCE.get(self.reference, UNKNOWN)
+
+    @parent.setter
+    def parent(self, value: Parent | None) -> None:
+        self._parent = value
 
     def __repr__(self) -> str:
         return f"Frame({self.name!r}, {self.vendor}, {self.type}, {self.pose!r}, {self.file}:{self.line})"
@@ -243,6 +306,9 @@ class Frame(Value):
         d: dict[str, Any] = {"name": self.name, "file": self.file, "line": self.line,
                              "vendor": self.vendor, "type": self.type,
                              "reference": self.reference}
+        parent = self.parent
+        d["parent"] = parent.name
+        d["parent_kind"] = parent.kind
         if self.pose is not None:
             d.update(self.pose.as_dict())
         else:

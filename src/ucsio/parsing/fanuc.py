@@ -24,7 +24,7 @@ from __future__ import annotations
 import os
 
 from ..errors import UcsioError
-from ..geometry.frames import Frame, Number, Pose
+from ..geometry.frames import Frame, Number, Pose, flange, robot
 from .document import Document
 from .model import ControllerFile
 
@@ -35,6 +35,12 @@ SUFFIXES = (".va", ".dg", ".ls")
 BINARY_SUFFIXES = (".tp", ".sv", ".vr")
 COMPONENTS = ("x", "y", "z", "w", "p", "r")
 KINDS = {"UFRAME": ("UF", "world"), "UTOOL": ("UT", "flange")}
+
+
+def parent(ftype: str, group: int):
+    """UFk@g is relative to group g's robot (its world, fixed to its base),
+    UTk@g to group g's faceplate."""
+    return robot(group) if ftype == "UFRAME" else flange(group)
 ANGLE_MAX = 180.0
 REACH_MAX = 1e6         # mm: a translation of 1 km or more is not a frame of a cell
 REAL_MAX = 3.4028235e38  # FANUC REAL is float32
@@ -85,7 +91,8 @@ def make_frame(doc: Document, ftype: str, number, group: int, line: int,
         extra.update(info)
     return Frame(name=frame_name(ftype, number, group), vendor=VENDOR, type=ftype, pose=pose,
                  file=doc.path, line=line, reference=KINDS[ftype][1], label=label,
-                 numbers=dict(numbers or {}), info=extra, document=doc)
+                 numbers=dict(numbers or {}), info=extra, document=doc,
+                 parent=parent(ftype, group))
 
 
 # The comments a controller gives frames nobody named (UFrame7, Eoat2): a

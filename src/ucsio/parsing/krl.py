@@ -48,7 +48,7 @@ import functools
 import re
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
-from ..geometry.frames import Frame, Number, Pose
+from ..geometry.frames import Frame, Number, Pose, unit
 from ..values import Value
 from . import regex
 from .document import Document, Span, lf_lines, masked
@@ -1042,6 +1042,7 @@ class _Interpreter:
         mach = mframes.get(n)
         if mach and mach["index"] and fr.reference == "world":
             fr.reference = "machine"
+            fr.parent = unit(f"MACHINE_DEF[{mach['index']}]")   # the kinematic that moves it
             fr.info["machine"] = dict(mach)
             if mach["index"] in machines:
                 fr.info["machine"]["definition"] = machines[mach["index"]]

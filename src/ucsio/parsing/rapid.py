@@ -27,7 +27,7 @@ import os
 import re
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError
-from ..geometry.frames import Frame, Number, Pose
+from ..geometry.frames import Frame, Number, Parent, Pose, flange, frame_parent, unit
 from ..values import Value
 from .document import Document, Span
 from . import regex
@@ -553,7 +553,7 @@ def _loaddata(v) -> dict | None:
 
 
 def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_value,
-                reference: str, info: dict, at: int) -> Frame:
+                reference: str, info: dict, at: int, parent: Parent | None = None) -> Frame:
     doc = cf.document
     at = _start_of(pose_value, at)  # a multi-line wobj: the oframe's line is its own
     parsed = _pose(pose_value)
@@ -592,7 +592,7 @@ def _make_frame(cf: ControllerFile, decl: Decl, name: str, type_: str, pose_valu
             pose = Pose.from_quat(*t, q)
     line = doc.line_of(at)
     return Frame(name=name, vendor="abb", type=type_, pose=pose, file=doc.path, line=line,
-                 reference=reference, numbers=numbers, info=info, document=doc)
+                 reference=reference, numbers=numbers, info=info, document=doc, parent=parent)
 
 
 def _is_literal(v) -> bool:
@@ -679,15 +679,18 @@ def frames_from(cf: ControllerFile, decls: list[Decl]) -> None:
                 # uframe is in world with a robot-held tool; with a stationary
                 # tool (wobj robhold TRUE) the robot holds the work object.
                 uref = "wrist" if robhold else "world"
+                uparent = flange() if robhold else None        # the wrist is tool0: the flange
                 if ufprog is False:
                     uref = f"mechanical unit {ufmec}" if ufmec else "moving"
+                    uparent = unit(ufmec)
                     cf.lint(at, "moving-uframe",
                             f"{name}: moving user frame (ufprog FALSE, ufmec {ufmec!r}): not patchable")
                 cf.frames.append(_make_frame(cf, d, name, "wobjdata", v[3] if ok else None, uref,
-                                             dict(info, component="uframe"), at))
+                                             dict(info, component="uframe"), at, uparent))
                 cf.frames.append(_make_frame(cf, d, f"{name}.oframe", "wobjdata",
                                              v[4] if ok else None, "uframe",
-                                             dict(info, component="oframe"), at))
+                                             dict(info, component="oframe"), at,
+                                             frame_parent(name)))
 
 
 def _check_array_size(cf: ControllerFile, d: Decl) -> None:

@@ -517,7 +517,7 @@ def _frames_of(cf: ControllerFile, r: Record, labels: dict, seen: dict, made: di
             info = dict(like.info)
             info["group"] = g
             fr = Frame(name, fanuc.VENDOR, ftype, like.pose, doc.path, line, reference, label,
-                       numbers and _moved(numbers, delta), info, doc)
+                       numbers and _moved(numbers, delta), info, doc, fanuc.parent(ftype, g))
         key = name.upper()
         if key in seen:
             cf.lint(m.pos, "duplicate-frame",

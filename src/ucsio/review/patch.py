@@ -554,12 +554,15 @@ def resolve_name(name: str, oframe: bool) -> str:
     return name
 
 
-def _object_frame_parent(cf: ControllerFile, frame: Frame) -> Frame | None:
-    """The wobj whose user frame an ABB object frame hangs from, or None."""
-    if frame.vendor != "abb" or frame.info.get("component") != "oframe":
+def _parent_frame(cf: ControllerFile, frame: Frame) -> Frame | None:
+    """The frame of ``cf`` that ``frame`` is given in (its Parent names a
+    frame: an ABB object frame's work object, whose user frame it hangs
+    from), or None."""
+    parent = frame.parent
+    if parent.kind != "frame":
         return None
     try:
-        return cf.frame(frame.name[: -len(".oframe")])
+        return cf.frame(parent.name)
     except UcsioError:
         return None
 
@@ -571,7 +574,7 @@ def measured_in_parent(cf: ControllerFile, frame: Frame, world: Pose) -> Pose:
     where that is not fixed in world: reference_problem says so, and only
     ``--force`` writes it); every other frame is compared as it is
     (reference_problem says when that is not robot world)."""
-    uframe = _object_frame_parent(cf, frame)
+    uframe = _parent_frame(cf, frame)
     if uframe is not None and uframe.pose is not None:
         return uframe.pose.inverse().compose(world)
     return world
@@ -590,8 +593,8 @@ def object_frame_basis(cf: ControllerFile, frame: Frame) -> str | None:
     """For an ABB object frame whose user frame is not fixed in robot world
     but has a value: how a measured frame is put into it (what --force
     writes and diff compares), naming that user frame's values; else None."""
-    uframe = _object_frame_parent(cf, frame)
-    if uframe is None or uframe.reference == "world" or uframe.pose is None:
+    uframe = _parent_frame(cf, frame)
+    if uframe is None or uframe.parent.kind == "world" or uframe.pose is None:
         return None
     p = uframe.pose
     a, b, c = p.abc
@@ -612,9 +615,9 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
                 "fixture frame does not belong here")
     if ref == "world":
         return None
-    if frame.vendor == "abb" and frame.info.get("component") == "oframe":
-        uframe = _object_frame_parent(cf, frame)
-        if uframe is not None and uframe.reference == "world" and uframe.pose is not None:
+    if frame.parent.kind == "frame":
+        uframe = _parent_frame(cf, frame)
+        if uframe is not None and uframe.parent.kind == "world" and uframe.pose is not None:
             return None
         if uframe is None or uframe.pose is None:
             return ("the object frame is relative to a user frame with no literal value: a "
@@ -955,7 +958,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
         pose = measured_in_parent(cf, frame, pose)
         why = reference_problem(cf, frame)
         basis = object_frame_basis(cf, frame)
-        if why and frame.info.get("component") == "oframe" and basis is None:
+        if why and frame.parent.kind == "frame" and basis is None:
             # no user frame value to express it in: not even --force can write it
             raise UcsioError(f"{frame.name}: {why}; refusing to write a measured world frame",
                              **where)
