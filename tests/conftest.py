@@ -4,6 +4,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+
+# Every property test draws the same examples on every run: the suite is
+# deterministic (a test's own @settings keeps this unless it says otherwise).
+settings.register_profile("ucsio", derandomize=True)
+settings.load_profile("ucsio")
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURES = ROOT / "fixtures"

@@ -96,6 +96,7 @@ axis = st.tuples(*[st.floats(-1, 1)] * 3).filter(lambda v: sum(x * x for x in v)
        turn=st.one_of(st.just(None), axis), sign=st.sampled_from([1.0, -1.0]))
 @example(a=30.0, b=90.0, c=40.0, turn=None, sign=1.0)
 @example(a=180.0, b=-90.0, c=-179.999, turn=None, sign=-1.0)
+@example(a=144.0, b=0.0, c=179.999, turn=(-0.125, 0.0, 1.0), sign=1.0)   # W rounds to -180
 @settings(max_examples=30, deadline=None)
 def test_the_written_triple_is_the_rotation_nearest_the_old_values(vendor, a, b, c, turn, sign):
     step = STEP[vendor]

@@ -424,6 +424,8 @@ def wpr_to_write(pose: Pose, olds: tuple[float, float, float] | None = None,
             opts.append((None, olds[i]))
         for k in sorted({math.floor(round(v / step, 6)), math.ceil(round(v / step, 6))}):
             val = round(k * step, FANUC_DECIMALS) + 0.0
+            if i != 1 and val == -180.0:
+                val = 180.0         # W and R in (-180, 180]: the same rotation
             if abs(val) <= 180.0:
                 opts.append((number(val), val))
         options.append(opts)
