@@ -19,7 +19,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import fuzzing
-from conftest import CORPUS, FIXTURES, ROOT, corpus_file, corpus_files
+from conftest import FIXTURES, ROOT, corpus_file, corpus_files
 from ucsio.errors import UcsioError
 from ucsio.geometry import rotations as rot
 from ucsio.parsing import controller, dg, tp, va

@@ -410,7 +410,7 @@ def test_a_wrong_tcp_is_not_told_to_measure_again(tmp_path, capsys):
 
 # ------------------------------------------------------------------ batch: the solved TCP
 
-def _solve_station(tmp_path, entries: str, defaults: str = "") -> "Path":
+def _solve_station(tmp_path, entries: str, defaults: str = ""):
     meas, _, _ = cell(4, 30)
     csv_of(meas, tmp_path / "m.csv")
     (tmp_path / "Cell.mod").write_text(ABB_TOOLS)

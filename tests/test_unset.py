@@ -12,7 +12,6 @@ from __future__ import annotations
 import json
 import shutil
 
-import pytest
 
 from conftest import FIXTURES, corpus_file
 from ucsio.cli import main

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import bisect
 import os
-import re
 
 from ..errors import UcsioError
 from ..files import read_bytes

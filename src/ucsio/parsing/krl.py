@@ -44,7 +44,6 @@ array element, under its declared spelling (``gfBaseShift[2]``), reference
 """
 from __future__ import annotations
 
-import functools
 import re
 
 from ..errors import MAX_NESTING, TooDeep, UcsioError

@@ -22,7 +22,6 @@ and ``full=True`` shows what ``parse_whole`` shows (tests/test_lalr.py).
 from __future__ import annotations
 
 import bisect
-import functools
 import os
 import re
 

@@ -36,7 +36,6 @@ import bisect
 import itertools
 import math
 import os
-import re
 
 from ..errors import UcsioError
 from ..files import atomic_write, write_target
