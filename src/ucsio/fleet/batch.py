@@ -706,6 +706,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     import time
 
     from ..review.names import find_frame
+    from ..review.patch import same_rotation_tolerance
     from ..review.unset import is_set, warning as unset_warning
 
     t0 = time.perf_counter()
@@ -801,7 +802,6 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             r.error, r.stage = str(exc), "diff"
             continue
         if sol.accepted:
-            from ..review.patch import same_rotation_tolerance
             r.delta = frame_delta(r.simulated, r.measured, r.entry.tolerance,
                                   same_rotation_tolerance(frame.vendor))
     if progress:
