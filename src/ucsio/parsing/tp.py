@@ -580,10 +580,12 @@ def _point_comment(text: str) -> str:
 
 def _index_number(doc: Document, digits: str, at: int) -> int:
     """A point's or group's number as written; digits no controller
-    numbers by are refused, naming the place."""
-    if len(digits) > 9:
+    numbers by (more than 9 digits) are refused, naming the place; judged by
+    ``small_int``, as every integer a reader takes from a file."""
+    value = small_int(digits, 999_999_999)
+    if value is None:
         raise doc.error(f"number {digits[:30]}... has {len(digits)} digits: not a FANUC index", at)
-    return int(digits)
+    return value
 
 
 def _frame_number(doc: Document, text: str, at: int) -> int | None:
