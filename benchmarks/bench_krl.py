@@ -46,7 +46,7 @@ def main(argv=None) -> int:
     ma, mb = alternate(numpy_cmd, ucsio_cmd, args.runs)
 
     # in-process, for information: the parse alone (parser already loaded)
-    from ucsio.parsing import krl
+    from ucsio.vendors.kuka import krl
     from ucsio.parsing.document import Document
     doc = Document.read(path)
     krl.parse(doc)

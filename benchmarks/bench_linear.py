@@ -297,8 +297,9 @@ def run_commands(name: str, text: str) -> None:
     if name.endswith(".csv"):
         run_readers(name, text)
         return
-    from ucsio.parsing import krl, rapid
-    from ucsio.taught.abb import _read_module
+    from ucsio.vendors.kuka import krl
+    from ucsio.vendors.abb import rapid
+    from ucsio.vendors.abb.taught import _read_module
 
     raw = text.encode("utf-8")
     for full in (False, True):
@@ -325,7 +326,9 @@ def run_commands(name: str, text: str) -> None:
                 pass
     # FANUC: what the readers beside the frames read (comments beside a
     # sysframe.va, position registers, a program's points, curpos.dg)
-    from ucsio.parsing import dg, tp, va
+    from ucsio.vendors.fanuc import dg
+    from ucsio.vendors.fanuc import tp
+    from ucsio.vendors.fanuc import va
     readers = {".va": (va.frame_comments, va.position_registers), ".ls": (tp.positions,),
                ".dg": (dg.frame_labels, dg.current_positions)}
     for read in readers.get(name[name.rfind("."):], ()):

@@ -68,7 +68,7 @@ def main() -> int:
         print(f"  regex scan, cold     {t_regex * 1000:7.1f} ms")
         print(f"  ratio                {ratio:7.2f}   (target <= 3)")
 
-        from ucsio.parsing import rapid
+        from ucsio.vendors.abb import rapid
         from ucsio.parsing.document import Document
         raw = big.read_bytes()
         scan = re.compile(SCAN)

@@ -205,8 +205,12 @@ def same_tree(ours, theirs) -> bool:
 def same_as_whole_tree(doc: Document, full, full_err) -> None:
     """``check`` (the recogniser over every byte, the fast path for frames)
     shows exactly what Lark's tree of every byte shows (``parse_whole``)."""
-    from ucsio.parsing import fanuc, krl, rapid, tp, va
-    from ucsio.parsing.controller import detect_vendor
+    from ucsio.vendors.fanuc import base as fanuc
+    from ucsio.vendors.kuka import krl
+    from ucsio.vendors.abb import rapid
+    from ucsio.vendors.fanuc import tp
+    from ucsio.vendors.fanuc import va
+    from ucsio.vendors import detect as detect_vendor
     from ucsio.parsing.document import looks_binary, lf_lines
 
     if looks_binary(doc.raw):

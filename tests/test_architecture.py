@@ -43,9 +43,11 @@ def copy_of_package(tmp_path: Path) -> Path:
 @pytest.mark.parametrize("module, line, contract", [
     # geometry reaching up into the method breaks the layers
     ("geometry/rotations.py", "from ..method import horn", "Layers"),
-    # one vendor's parser using another's
-    ("parsing/rapid.py", "from . import krl", "do not import each other"),
-    ("parsing/va.py", "from .rapid import parse", "FANUC's readers import neither"),
+    # one vendor's folder using another's
+    ("vendors/abb/rapid.py", "from ..kuka import krl", "imports no other vendor's"),
+    ("vendors/fanuc/va.py", "from ..abb.rapid import parse", "imports no other vendor's"),
+    # what the vendors share leaning on one of them
+    ("vendors/common/taught.py", "from ..fanuc import tp", "share imports no vendor"),
 ])
 def test_a_broken_contract_is_caught(tmp_path, module, line, contract):
     """The contracts are not vacuous: one wrong import in a copy of the

@@ -860,12 +860,12 @@ def _two_frames_one_file(tmp_path):
 def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
     """The source and its sibling modules are parsed once (through the run's
     cache), and the combined copy once: no per-entry sibling or read-back parse."""
-    import ucsio.parsing.rapid
+    import ucsio.vendors.abb.rapid
 
     _two_frames_one_file(tmp_path)
     parsed = []
-    real = ucsio.parsing.rapid.parse
-    monkeypatch.setattr(ucsio.parsing.rapid, "parse",
+    real = ucsio.vendors.abb.rapid.parse
+    monkeypatch.setattr(ucsio.vendors.abb.rapid, "parse",
                         lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
     res = B.run_batch(B.read_manifest(tmp_path / "m.toml"), patch_dir=str(tmp_path / "out"))
     assert all(r.passed and r.patch_error is None for r in res.entries)

@@ -22,7 +22,10 @@ import fuzzing
 from conftest import FIXTURES, ROOT, corpus_file, corpus_files
 from ucsio.errors import UcsioError
 from ucsio.geometry import rotations as rot
-from ucsio.parsing import controller, dg, tp, va
+from ucsio.parsing import controller
+from ucsio.vendors.fanuc import dg
+from ucsio.vendors.fanuc import tp
+from ucsio.vendors.fanuc import va
 from ucsio.parsing.document import Document
 
 FANUC = FIXTURES / "fanuc"

@@ -391,7 +391,7 @@ def test_a_register_in_use_in_another_group_is_in_use(tmp_path):
 def test_the_corpus_posreg_gives_group_2_a_register_free_in_group_1(tmp_path):
     from conftest import corpus_file
     from ucsio.review.program import program
-    from ucsio.parsing.va import position_registers
+    from ucsio.vendors.fanuc.va import position_registers
     posreg = corpus_file("fanuc", "UB10200_RBT01__posreg.va")
     regs = position_registers(Document.read(str(posreg)))
     made = program(Pose.from_wpr(1, 2, 3, 0, 0, 0), "UF3@2", posreg=str(posreg))

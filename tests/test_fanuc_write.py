@@ -312,7 +312,7 @@ def test_the_register_from_posreg_va(tmp_path):
     res = run("program", sol, "--frame", "UT2", "--posreg", posreg, "--json")
     assert res.returncode == 0, res.stderr
     doc = json.loads(res.stdout)["program"]
-    from ucsio.parsing.va import position_registers
+    from ucsio.vendors.fanuc.va import position_registers
     regs = position_registers(Document.read(str(posreg)))
     entry = regs[(1, doc["pr"])]
     assert entry.uninit and not (entry.comment or "").strip()

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from ucsio.cli import main
-from ucsio.parsing import krl
+from ucsio.vendors.kuka import krl
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
 

@@ -1,4 +1,4 @@
-"""KUKA KRL data lists: grammars/krl.lark + ucsio.parsing.krl (issue 3).
+"""KUKA KRL data lists: grammars/krl.lark + ucsio.vendors.kuka.krl (issue 3).
 
 The real files are read in place from ../shared/corpus/kuka (never copied into
 the project); hand-written fixtures cover what the corpus lacks.
@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from ucsio.parsing import controller, krl
+from ucsio.parsing import controller
+from ucsio.vendors.kuka import krl
 from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
 

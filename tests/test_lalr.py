@@ -21,7 +21,9 @@ from hypothesis import strategies as st
 import fuzzing
 from fuzzing import lark_tree, same_tree
 from conftest import FIXTURES, corpus_files
-from ucsio.parsing import cache, grammar, krl, lalr, rapid
+from ucsio.parsing import cache, grammar, lalr
+from ucsio.vendors.kuka import krl
+from ucsio.vendors.abb import rapid
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
@@ -281,7 +283,7 @@ def test_the_wheel_s_tables_are_found_beside_the_grammars(tmp_path, monkeypatch)
     reads them there, builds nothing and writes no cache."""
     import shutil
 
-    from ucsio.taught import abb
+    from ucsio.vendors.abb import taught as abb
 
     assert {(rapid.__name__.rsplit(".")[-1], rapid.START), ("krl", krl.START)} <= set(grammar.BUILT)
     assert ("rapid", ("statements",)) in grammar.BUILT      # diff --points (taught.abb)

@@ -15,7 +15,9 @@ from hypothesis import strategies as st
 
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.parsing import controller, krl, rapid
+from ucsio.parsing import controller
+from ucsio.vendors.kuka import krl
+from ucsio.vendors.abb import rapid
 from ucsio.parsing.document import Document, line_starts, lf_lines, text_lines
 
 ENDINGS = ["\n", "\r\n", "\r", "\r\r\n"]

@@ -499,7 +499,7 @@ def test_kuka_angles_written_in_spec_ranges(given, written):
 def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
     """The shared-PERS check parses a sibling module only when its bytes
     hold the data's name (any case); the refusal still finds the real one."""
-    import ucsio.parsing.rapid
+    import ucsio.vendors.abb.rapid
 
     decl = 'PERS wobjdata wobjA:=[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n'
     (tmp_path / "cell.mod").write_text("MODULE cell\n  " + decl + "ENDMODULE\n")
@@ -508,8 +508,8 @@ def test_only_siblings_that_name_the_pers_are_parsed(tmp_path, monkeypatch):
     (tmp_path / "other.mod").write_text("MODULE other\n  " + decl.replace("wobjA", "wobjAB")
                                         + "ENDMODULE\n")
     parsed = []
-    real = ucsio.parsing.rapid.parse
-    monkeypatch.setattr(ucsio.parsing.rapid, "parse",
+    real = ucsio.vendors.abb.rapid.parse
+    monkeypatch.setattr(ucsio.vendors.abb.rapid, "parse",
                         lambda doc, *a, **k: parsed.append(Path(doc.path).name) or real(doc, *a, **k))
     cf = load(tmp_path / "cell.mod")
     with pytest.raises(UcsioError, match="also declared in same.mod"):

@@ -10,7 +10,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import ucsio
-from ucsio.parsing import rapid
+from ucsio.vendors.abb import rapid
 from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
 

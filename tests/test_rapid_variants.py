@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from ucsio.parsing import rapid
+from ucsio.vendors.abb import rapid
 from ucsio.parsing.document import Document
 
 W = '[FALSE,TRUE,"",[[1,2,3],[1,0,0,0]],[[0,0,0],[1,0,0,0]]]'

@@ -342,7 +342,7 @@ def test_cli_laser_and_robot(tmp_path, capsys):
 def test_kuka_positions_of_a_real_program_dat():
     from conftest import corpus_file
     from ucsio.parsing.document import Document
-    from ucsio.parsing.krl import positions
+    from ucsio.vendors.kuka.krl import positions
 
     found = {p.name: p for p in positions(Document.read(
         corpus_file("kuka", "C1_pickConveyorBP.dat")))}
@@ -357,7 +357,7 @@ def test_kuka_positions_of_a_real_program_dat():
 def test_abb_robtargets_of_a_real_module():
     from conftest import corpus_file
     from ucsio.parsing.controller import load
-    from ucsio.parsing.rapid import robtargets
+    from ucsio.vendors.abb.rapid import robtargets
 
     cf = load(corpus_file("abb", "HandEyeCalibrationExample.modx"), full=True)
     targets = robtargets(cf)

@@ -118,7 +118,8 @@ def _import_everything():
 
 def test_every_pattern_of_ucsio_can_be_rewritten():
     _import_everything()
-    from ucsio.parsing import krl, rapid
+    from ucsio.vendors.kuka import krl
+    from ucsio.vendors.abb import rapid
     rapid._recognise("MODULE m\nENDMODULE\n")      # the shortcut patterns are built lazily
     krl._recognise("DEFDAT d\nENDDAT\n")
     assert len(regex.PATTERNS) > 10

@@ -277,7 +277,7 @@ def test_every_move_in_the_corpus_is_read_by_the_grammar():
     real slip in a real file (Tool:= without its backslash), and it is an
     assignment, so it is not warned about."""
     from ucsio.parsing.document import Document
-    from ucsio.taught import abb
+    from ucsio.vendors.abb import taught as abb
 
     n = 0
     unread = []
@@ -306,7 +306,7 @@ def test_positions_fast_path_equals_the_full_parse(path):
     FDAT lines only); it must find what the whole-file parse finds."""
     from ucsio.parsing.document import Document
     from ucsio.errors import UcsioError
-    from ucsio.parsing.krl import positions
+    from ucsio.vendors.kuka.krl import positions
 
     doc = Document.read(path)
 
@@ -326,9 +326,9 @@ def test_plain_robtargets_read_without_lark_equal_the_grammars_reading():
     """A robtarget in the controller's plain form is read with a strict regex
     (a path module has thousands); on every corpus robtarget it gives what
     the grammar gives, and anything it does not take goes to the grammar."""
-    from ucsio.parsing import rapid
+    from ucsio.vendors.abb import rapid
     from ucsio.parsing.document import Document
-    from ucsio.taught import abb
+    from ucsio.vendors.abb import taught as abb
 
     fast = slow = 0
     for path in sorted((CORPUS / "abb").iterdir()):

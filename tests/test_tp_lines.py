@@ -24,7 +24,8 @@ from conftest import FIXTURES, corpus_files
 from fanuc_cell import position, program
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.parsing import controller, tp
+from ucsio.parsing import controller
+from ucsio.vendors.fanuc import tp
 from ucsio.parsing.document import Document
 
 FANUC = FIXTURES / "fanuc"

@@ -10,7 +10,8 @@ import shutil
 from conftest import FIXTURES, ROOT, corpus_file
 from ucsio.cli import main
 from ucsio.errors import UcsioError
-from ucsio.parsing import controller, va
+from ucsio.parsing import controller
+from ucsio.vendors.fanuc import va
 from ucsio.parsing.document import Document
 
 FANUC = FIXTURES / "fanuc"

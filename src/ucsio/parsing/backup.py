@@ -20,14 +20,13 @@ import os
 
 from ..errors import UcsioError
 from ..values import Value
+from ..vendors import BACKUP_SUFFIXES   # SPEC: what a folder or archive holds that ucsio reads
 from .sources import MEMBER_MARK, Source, open_zip, split_member
 
 TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
 if TYPE_CHECKING:
     from .model import ControllerFile
 
-# SPEC: what a folder or archive holds that ucsio reads (KRL .src/.sub hold no frames)
-BACKUP_SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls")
 # SPEC: a FANUC backup's binary files, listed as not read
 BINARY_SUFFIXES = (".tp", ".sv", ".vr")
 

@@ -13,7 +13,7 @@ one file starts in a blink), two ways:
   .children; Token, a str with .type, .value, .start_pos, .end_pos);
 - ``recognise`` (``check``): the same moves keeping only the state stack, no
   token or node made; a literal robtarget/E6POS value can be fed as one
-  NUMBER (``shortcuts``, see ucsio.parsing.rapid and ucsio.parsing.krl).
+  NUMBER (``shortcuts``, see ucsio.vendors.abb.rapid and ucsio.vendors.kuka.krl).
 
 Either says only *whether* a text is in the language: on rejection the
 caller asks Lark itself for the positioned error (ucsio.parsing.grammar), so

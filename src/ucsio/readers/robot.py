@@ -43,7 +43,7 @@ import numpy as np
 
 from ..errors import UcsioError
 from ..geometry.frames import Pose
-from ..parsing.controller import ABB_SUFFIXES
+from ..vendors import BY_NAME
 
 KUKA_SUFFIXES = {".dat"}
 FANUC_SUFFIXES = {".ls", ".va"}
@@ -86,7 +86,7 @@ def read_robot(path: str | os.PathLike, *, config: str | None = None, tool: str 
         return fanuc_program(path, config, tool, wobj)
     if suffix == ".va":
         return fanuc_registers(path, config, tool, wobj)
-    if suffix in ABB_SUFFIXES:
+    if suffix in BY_NAME["abb"].suffixes:
         return abb_module(path, tool, wobj, config)
     return spec_csv(path, angle_units=angle_units, quaternion_order=quaternion_order)
 
@@ -114,7 +114,7 @@ def spec_csv(path: str, **reading) -> RobotPoses:
 def kuka_dat(path: str, config: str | None) -> RobotPoses:
     from ..parsing.controller import load
     from ..parsing.document import Document
-    from ..parsing.krl import positions
+    from ..vendors.kuka.krl import positions
     from ..geometry.arrays import flange_matrices
 
     doc = Document.read(path)
@@ -192,7 +192,7 @@ def fanuc_program(path: str, config: str | None, tool: str = "tool0",
     from ..parsing.document import Document
     from array import array
 
-    from ..parsing.tp import iter_positions
+    from ..vendors.fanuc.tp import iter_positions
 
     if tool.strip().casefold() not in ("tool0", "ut0") or \
             wobj.strip().casefold() not in ("wobj0", "uf0"):
@@ -261,7 +261,7 @@ def _fanuc_flanges(taught: list, values) -> None:
 def fanuc_registers(path: str, config: str | None, tool: str = "tool0",
                     wobj: str = "wobj0") -> RobotPoses:
     from ..parsing.document import Document
-    from ..parsing.va import register_list
+    from ..vendors.fanuc.va import register_list
 
     doc = Document.read(path)
     regs = register_list(doc)
@@ -407,7 +407,7 @@ def abb_module(path: str, tool: str, wobj: str, config: str | None) -> RobotPose
     from ..parsing.controller import parse
     from ..parsing.document import Document
     from ..geometry.arrays import flange_matrices
-    from ..parsing.rapid import robtargets
+    from ..vendors.abb.rapid import robtargets
 
     cf = parse(Document.read(path), full=True)
     targets = robtargets(cf)
@@ -451,7 +451,7 @@ class _AbbLookup:
             files = [self.cf]
             try:
                 siblings = sorted(p for p in here.parent.iterdir()
-                                  if p.suffix.lower() in ABB_SUFFIXES and p.is_file()
+                                  if p.suffix.lower() in BY_NAME["abb"].suffixes and p.is_file()
                                   and p.resolve() != here.resolve())
             except OSError:
                 siblings = []

@@ -42,7 +42,8 @@ from ..files import atomic_write, write_target
 from ..geometry import rotations as rot
 from ..geometry.frames import Frame, Number, Pose
 from ..parsing import regex
-from ..parsing.controller import ABB_SUFFIXES, parse
+from ..parsing.controller import parse
+from ..vendors import BY_NAME
 from ..parsing.document import Document, Edit, Span, looks_binary, text_lines
 from ..parsing.model import ControllerFile
 from ..values import Value
@@ -377,7 +378,7 @@ class FanucStyle(Value):
 
 def is_listing(frame: Frame) -> bool:
     """A frame of a ``.va`` listing (sysframe.va), not of a TP program."""
-    from ..parsing.fanuc import kind_of
+    from ..vendors.fanuc.base import kind_of
     return frame.document is not None and kind_of(frame.document) == "va"
 
 
@@ -650,7 +651,7 @@ def shared_declarations(frame: Frame, warnings: list[str] | None = None, *,
     try:
         siblings = sorted(os.path.join(folder, n) if folder else n
                           for n in os.listdir(folder or ".")
-                          if os.path.splitext(n)[1].lower() in ABB_SUFFIXES
+                          if os.path.splitext(n)[1].lower() in BY_NAME["abb"].suffixes
                           and os.path.isfile(os.path.join(folder or ".", n)))
     except OSError:
         return []

@@ -138,7 +138,7 @@ def unused_register(posreg: str, group: int) -> int:
 
 
 def _registers(posreg: str) -> dict:
-    from ..parsing.va import position_registers
+    from ..vendors.fanuc.va import position_registers
     doc = Document.read(posreg) if posreg != "-" else None
     if doc is None:
         from ..files import read_bytes
@@ -245,7 +245,7 @@ def program(pose: Pose, frame: str, *, group: int | None = None, pr: int | None 
 def _read_back(text: str, name: str, short: str, pose: Pose) -> dict[str, float]:
     """The frame as ucsio's TP grammar reads the program: it must give
     ``pose`` within 0.001 mm and 0.001 deg (else an internal error)."""
-    from ..parsing import tp
+    from ..vendors.fanuc import tp
     try:
         cf = tp.parse(Document(text.encode("ascii"), f"{name}.LS"), full=True)
     except UcsioError as exc:      # the reader refuses a value (a REAL out of range)

@@ -66,7 +66,7 @@ def _default_name(frame, label: str) -> bool:
     if label.casefold() == frame.name.casefold():
         return True
     if frame.vendor == "fanuc":
-        from ..parsing.fanuc import default_comment
+        from ..vendors.fanuc.base import default_comment
         return default_comment(frame.type, frame.name, label)
     return False
 

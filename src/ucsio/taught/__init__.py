@@ -25,7 +25,7 @@ import os
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
 from ..parsing.model import ControllerFile
-from .base import Found
+from ..vendors.common.taught import Found
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -61,12 +61,12 @@ def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> 
     """The points taught in ``frame`` (of ``cf``), read from the files around it;
     ``cache`` (any dict kept for a run, as ``batch`` does) reads each file once."""
     if frame.vendor == "abb":
-        from . import abb
+        from ..vendors.abb import taught as abb
         return abb.find(cf, frame, cache)
     if frame.vendor == "fanuc":
-        from . import fanuc
+        from ..vendors.fanuc import taught as fanuc
         return fanuc.find(cf, frame, cache)
-    from . import kuka
+    from ..vendors.kuka import taught as kuka
     return kuka.find(cf, frame, cache)
 
 

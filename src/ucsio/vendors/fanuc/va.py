@@ -13,7 +13,7 @@ POSITION sized [groups, frames] by each record's head (seen: [2,32],
 
 Every other listing (posreg.va, FRAMEVAR.VA, numreg.va, system.va, ...)
 reads with the same grammar; it gives no frames. Two ways through it, as
-for KRL (ucsio.parsing.krl):
+for KRL (ucsio.vendors.kuka.krl):
 
 - ``full=True`` (``ucsio check``): every byte through the grammar's tables
   (ucsio.parsing.lalr's recogniser: no tree), then the fast path for the
@@ -41,12 +41,13 @@ from __future__ import annotations
 
 import re
 
-from ..errors import UcsioError
-from ..geometry.frames import Frame, Number, ShiftedNumbers
-from . import fanuc, regex
-from .document import Document, Span, lf_lines, masked, small_int
-from .lalr import Rejected, Tree
-from .model import ControllerFile
+from ...errors import UcsioError
+from ...geometry.frames import Frame, Number, ShiftedNumbers
+from ...parsing import regex
+from . import base as fanuc
+from ...parsing.document import Document, Span, lf_lines, masked, small_int
+from ...parsing.lalr import Rejected, Tree
+from ...parsing.model import ControllerFile
 
 START = ("file",)
 FRAME_RECORDS = {"$MNUFRAME": "UFRAME", "$MNUTOOL": "UTOOL"}
@@ -194,7 +195,7 @@ def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
 
 # -- parsing -----------------------------------------------------------------------
 def _parser():
-    from .grammar import parser
+    from ...parsing.grammar import parser
     return parser("va", START)
 
 

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import os
 
-from ..values import Value
+from ...values import Value
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
-    from ..parsing.model import ControllerFile
+    from ...parsing.model import ControllerFile
 
 
 class TaughtPoint(Value):
@@ -53,15 +53,14 @@ def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
     Another file named like ``file`` below that root (a second robot's
     $config.dat in a folder of several backups) owns its own tree, found by
     the same ``root_of``: its files are another controller's, left out."""
-    from ..parsing.backup import archive_sources
-    from ..parsing.sources import Source, split_member
+    from ...parsing.sources import Source, split_member
 
     member = split_member(file)
     if member is not None:
         archive, inner = member
         parts = inner.replace("\\", "/").split("/")[:-1]
         prefix = "/".join(parts[:root_of(parts)])
-        found = [src for src in archive_sources(archive)
+        found = [src for src in _members(archive)
                  if src.rel.lower().endswith(suffixes)
                  and (not prefix or src.rel.casefold().startswith(prefix.casefold() + "/"))]
         return _own_tree(found, inner.replace("\\", "/"), root_of, lambda src: src.rel)
@@ -79,6 +78,16 @@ def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
                 out.append(Source(shown, os.path.relpath(full, root), path=full))
     return _own_tree(out, os.path.relpath(os.path.abspath(file), root).replace(os.sep, "/"),
                      root_of, lambda src: src.rel.replace(os.sep, "/"))
+
+
+def _members(archive: str) -> list:
+    """The files of a zip archive as Sources, in the order of their paths."""
+    from ...parsing.sources import MEMBER_MARK, Source, open_zip
+
+    names = [i.filename for i in open_zip(archive).infolist() if not i.is_dir()]
+    found = [Source(f"{archive}{MEMBER_MARK}{n}", n.replace("\\", "/").lstrip("/"),
+                    archive=archive, member=n) for n in names]
+    return sorted(found, key=lambda s: s.rel.casefold())
 
 
 def _own_tree(sources: list, mine: str, root_of, rel) -> list:

@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import re
 
-from .base import Found, TaughtPoint, cached_reader, files_around, is_same_file
-from ..errors import UcsioError
-from ..geometry.frames import Frame
-from ..parsing import krl
-from ..parsing.model import ControllerFile
-from ..parsing.document import Document
+from ..common.taught import Found, TaughtPoint, cached_reader, files_around, is_same_file
+from ...errors import UcsioError
+from ...geometry.frames import Frame
+from . import krl
+from ...parsing.model import ControllerFile
+from ...parsing.document import Document
 
 _BASE_ENTRY = re.compile(r"BASE_DATA\[(\d+)\]\Z", re.I)
 MAX_DEPTH = 3        # how far up from $config.dat a KRC folder is looked for

@@ -21,11 +21,12 @@ anchored patterns: linear in the file, whatever it holds.
 """
 from __future__ import annotations
 
-from ..geometry.frames import Number, Pose
-from ..values import Value
-from . import fanuc, regex
-from .document import Document, Span, lf_lines
-from .model import ControllerFile
+from ...geometry.frames import Number, Pose
+from ...values import Value
+from ...parsing import regex
+from . import base as fanuc
+from ...parsing.document import Document, Span, lf_lines
+from ...parsing.model import ControllerFile
 
 _N = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"
 _TABLES = {"tool frame": "UTOOL", "jog frame": None, "user frame": "UFRAME"}

@@ -3,15 +3,15 @@
 A FANUC backup keeps its data as ASCII listings beside the binary files
 the controller loads (../shared/SPEC.md "FANUC"):
 
-- ``.va`` variable listings (ucsio.parsing.va, grammars/va.lark):
+- ``.va`` variable listings (ucsio.vendors.fanuc.va, grammars/va.lark):
   ``sysframe.va`` holds the frames, ``$MNUFRAME[g,n]`` (user frames,
   relative to world) and ``$MNUTOOL[g,n]`` (tool frames, relative to the
   faceplate); ``posreg.va`` the position registers; ``FRAMEVAR.VA`` the
   frame set-up data with the frames' comments;
-- ``.ls`` TP programs (ucsio.parsing.tp, grammars/tp.lark), which may set
+- ``.ls`` TP programs (ucsio.vendors.fanuc.tp, grammars/tp.lark), which may set
   frames (``UFRAME[1:FIXTURE]=PR[16]``), and the controller's logs that
   share the suffix (``errall.ls``);
-- ``.dg`` diagnostic listings (ucsio.parsing.dg): ``frame.dg`` (the frame
+- ``.dg`` diagnostic listings (ucsio.vendors.fanuc.dg): ``frame.dg`` (the frame
   tables with their comments, one decimal), ``curpos.dg`` (the current
   position, in world and in the user frame).
 
@@ -23,10 +23,10 @@ from __future__ import annotations
 
 import os
 
-from ..errors import UcsioError
-from ..geometry.frames import Frame, Number, Pose, flange, robot
-from .document import Document
-from .model import ControllerFile
+from ...errors import UcsioError
+from ...geometry.frames import Frame, Number, Pose, flange, robot
+from ...parsing.document import Document
+from ...parsing.model import ControllerFile
 
 VENDOR = "fanuc"
 SUFFIXES = (".va", ".dg", ".ls")
@@ -179,7 +179,7 @@ def labels_beside(path: str, readers: dict) -> tuple[dict, list[UcsioError]]:
 def _beside(path: str) -> dict:
     """{lower-case name: Source} of the label files in ``path``'s folder (or,
     for ``ARCHIVE.zip!dir/file``, beside it in the archive)."""
-    from .sources import Source, open_zip, split_member
+    from ...parsing.sources import Source, open_zip, split_member
     member = split_member(path) if ".zip" in path.lower() else None
     if member is not None:
         archive, inner = member
@@ -235,7 +235,7 @@ def tree(name: str, doc: Document, text: str, readable: dict, what: str,
     grammars/NAME.lark's ``file``; where the grammar rejects it, one
     UcsioError naming file:line:col (``syntax_error``). ``lark_first``: the
     recogniser has rejected it already."""
-    from .grammar import SyntaxFailure, parse
+    from ...parsing.grammar import SyntaxFailure, parse
     try:
         return parse(name, ("file",), text, "file", lark_first)
     except SyntaxFailure as failure:
@@ -248,7 +248,7 @@ def syntax_error(doc: Document, text: str, exc: Exception, readable: dict, what:
     from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedToken
 
     if isinstance(exc, (UnexpectedCharacters, UnexpectedToken)):
-        from .numbers import bad_number
+        from ...parsing.numbers import bad_number
         bad = bad_number(text, exc.pos_in_stream if isinstance(exc, UnexpectedCharacters)
                           else exc.token.start_pos if exc.token.type != "$END" else len(text))
         if bad is not None:

@@ -46,14 +46,14 @@ from __future__ import annotations
 
 import re
 
-from ..errors import MAX_NESTING, TooDeep, UcsioError
-from ..geometry.frames import Frame, Number, Pose, unit
-from ..values import Value
-from . import regex
-from .document import Document, Span, lf_lines, masked
-from .lalr import Rejected, Token, Tree, paused_gc
-from .model import ControllerFile
-from .numbers import bad_number
+from ...errors import MAX_NESTING, TooDeep, UcsioError
+from ...geometry.frames import Frame, Number, Pose, unit
+from ...values import Value
+from ...parsing import regex
+from ...parsing.document import Document, Span, lf_lines, masked
+from ...parsing.lalr import Rejected, Token, Tree, paused_gc
+from ...parsing.model import ControllerFile
+from ...parsing.numbers import bad_number
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -425,7 +425,7 @@ _KEYWORDS = {"DECL", "GLOBAL", "CONST", "STRUC", "ENUM", "SIGNAL", "EXT", "EXTP"
 
 # -- parsing -------------------------------------------------------------------
 def _parser():
-    from .grammar import parser
+    from ...parsing.grammar import parser
     return parser("krl", START)
 
 
@@ -509,7 +509,7 @@ def _expecting(expected: set) -> str:
 
 
 def _parse(doc: Document, text: str, start: str, lark_first: bool = False):
-    from .grammar import SyntaxFailure, parse
+    from ...parsing.grammar import SyntaxFailure, parse
 
     try:
         return parse("krl", START, text, start, lark_first)
@@ -764,7 +764,7 @@ def _recognise(text: str) -> None:
     global _SHORTCUTS
     parser = _parser()
     if _SHORTCUTS is None:
-        from .lalr import atomic, bracketed
+        from ...parsing.lalr import atomic, bracketed
 
         tp = parser.terminals
         gap = f"{atomic(tp['WS'])}?+"

@@ -1,7 +1,7 @@
 """ABB: the robtargets that instructions move to in a work object.
 
 For every module of the file's folder (.mod .modx .sys .sysx .prg), the
-outline scanner (ucsio.parsing.rapid.outline with ``routines``) gives the routines
+outline scanner (ucsio.vendors.abb.rapid.outline with ``routines``) gives the routines
 and the runs of declarations. A regex cuts those into statements at the
 semicolons (strings and comments skipped, as the grammar's lexer does).
 
@@ -25,15 +25,16 @@ import os
 import re
 from pathlib import Path
 
-from .base import Found, TaughtPoint, files_around, is_same_file, same_folder
-from ..errors import UcsioError
-from ..geometry.frames import Frame, Number
-from ..geometry.rotations import quat_to_matrix, matvec
-from ..parsing import rapid, regex
-from ..parsing.controller import ABB_SUFFIXES
-from ..parsing.document import Document, Span
-from ..parsing.lalr import Rejected, Token, Tree
-from ..parsing.model import ControllerFile
+from ..common.taught import Found, TaughtPoint, files_around, is_same_file, same_folder
+from ...errors import UcsioError
+from ...geometry.frames import Frame, Number
+from ...geometry.rotations import quat_to_matrix, matvec
+from ...parsing import regex
+from . import rapid
+from .. import BY_NAME
+from ...parsing.document import Document, Span
+from ...parsing.lalr import Rejected, Token, Tree
+from ...parsing.model import ControllerFile
 
 # One statement: everything up to the next ';' outside strings and comments.
 _STATEMENT = regex.lazy(r'(?:[^;"!]++|"[^"\r\n]*+"|![^\r\n]*+)*+;')
@@ -82,7 +83,7 @@ _CARTESIAN_MOVE = regex.lazy(r"(?:Move(?!AbsJ|ExtJ)|Trigg|Arc)\w*\Z", re.I)
 
 def _modules(frame: Frame) -> list:
     """The modules of the file's folder (on disk, or in the same archive)."""
-    return files_around(frame.file, same_folder, tuple(ABB_SUFFIXES))
+    return files_around(frame.file, same_folder, BY_NAME["abb"].suffixes)
 
 
 def _wobj_name(frame: Frame) -> str:
@@ -196,7 +197,7 @@ def _read_module(doc: Document) -> _Module:
 
 
 def _statement_parser():
-    from ..parsing.grammar import parser
+    from ...parsing.grammar import parser
     return parser("rapid", ("statements",))
 
 

@@ -18,12 +18,12 @@ from __future__ import annotations
 
 import re
 
-from .base import Found, TaughtPoint, cached_reader, files_around, is_same_file
-from ..errors import UcsioError
-from ..geometry.frames import Frame
-from ..parsing import tp
-from ..parsing.model import ControllerFile
-from ..parsing.document import Document
+from ..common.taught import Found, TaughtPoint, cached_reader, files_around, is_same_file
+from ...errors import UcsioError
+from ...geometry.frames import Frame
+from . import tp
+from ...parsing.model import ControllerFile
+from ...parsing.document import Document
 
 _USER_FRAME = re.compile(r"UF(\d+)(?:@(\d+))?\Z", re.I)
 

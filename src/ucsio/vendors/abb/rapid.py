@@ -25,14 +25,14 @@ import bisect
 import os
 import re
 
-from ..errors import MAX_NESTING, TooDeep, UcsioError
-from ..geometry.frames import Frame, Number, Parent, Pose, flange, frame_parent, unit
-from ..values import Value
-from .document import Document, Span
-from . import regex
-from .grammar import grammar_dir
-from .lalr import Rejected, Token, Tree
-from .model import ControllerFile
+from ...errors import MAX_NESTING, TooDeep, UcsioError
+from ...geometry.frames import Frame, Number, Parent, Pose, flange, frame_parent, unit
+from ...values import Value
+from ...parsing.document import Document, Span
+from ...parsing import regex
+from ...parsing.grammar import grammar_dir
+from ...parsing.lalr import Rejected, Token, Tree
+from ...parsing.model import ControllerFile
 
 FRAME_TYPES = {"wobjdata", "tooldata", "pose"}
 IDENT_MAX = 32          # RobotWare 5-7 identifier limit (the lexer does not enforce it)
@@ -284,12 +284,12 @@ START = ("file", "data_decl")
 
 
 def _parser():
-    from . import grammar
+    from ...parsing import grammar
     return grammar.parser("rapid", START)
 
 
 def parse_tree(doc: Document, source: str, locate=lambda pos: pos, lark_first: bool = False):
-    from .grammar import SyntaxFailure, parse
+    from ...parsing.grammar import SyntaxFailure, parse
 
     try:
         return parse("rapid", START, source, "file", lark_first)
@@ -371,7 +371,7 @@ class _LazyDecl(Decl):
 
     def _convert(self) -> tuple:
         if self._converted is None:
-            from .grammar import SyntaxFailure, parse
+            from ...parsing.grammar import SyntaxFailure, parse
 
             doc = self._doc
             own = Compact(doc, [Region("decl", Span(self.start, self.end))])
@@ -789,7 +789,7 @@ def _recognise(text: str) -> None:
     global _SHORTCUTS
     parser = _parser()
     if _SHORTCUTS is None:
-        from .lalr import atomic, bracketed
+        from ...parsing.lalr import atomic, bracketed
 
         tp = parser.terminals
         gap = f"(?:{atomic(tp['WS'])}|{atomic(tp['COMMENT'])})*+"

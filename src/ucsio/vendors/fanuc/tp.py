@@ -43,13 +43,14 @@ from __future__ import annotations
 
 import re
 
-from ..errors import UcsioError
-from ..geometry.frames import Number
-from ..values import Value
-from . import fanuc, regex
-from .document import Document, Span, lf_lines, small_int
-from .lalr import Rejected, Tree
-from .model import ControllerFile
+from ...errors import UcsioError
+from ...geometry.frames import Number
+from ...values import Value
+from ...parsing import regex
+from . import base as fanuc
+from ...parsing.document import Document, Span, lf_lines, small_int
+from ...parsing.lalr import Rejected, Tree
+from ...parsing.model import ControllerFile
 
 START = ("file",)
 AXES = fanuc.COMPONENTS
@@ -78,7 +79,7 @@ def is_program(text: str) -> bool:
 
 # -- parsing -----------------------------------------------------------------------
 def _parser():
-    from .grammar import parser
+    from ...parsing.grammar import parser
     return parser("tp", START)
 
 
@@ -465,7 +466,7 @@ class PointGroup(Value):
         joint values."""
         if not self.cartesian:
             return None
-        from ..geometry.frames import Pose
+        from ...geometry.frames import Pose
         return Pose.from_wpr(*(self.values[k.upper()].value for k in AXES))
 
 
@@ -726,7 +727,7 @@ def _position_patterns() -> _Patterns:
     between any two, _NL only where the grammar has it."""
     global _PATTERNS
     if _PATTERNS is None:
-        from .lalr import atomic
+        from ...parsing.lalr import atomic
         t = _parser().terminals
         gap = f"{atomic(t['WS'])}?+"
         nl = f"(?:{gap}{atomic(t['_NL'])})?+"

@@ -1,0 +1,97 @@
+"""The registry: which vendor reads a file, and that vendor's capabilities.
+
+One line per vendor (``VENDORS``) names its file suffixes and the package
+that holds everything that knows its files. ``get(name)`` imports that
+package only when a file of its kind is read, so a command that reads one
+RAPID module imports nothing of KUKA or FANUC. What a vendor's package
+provides is ``vendors.protocol.Vendor``; a capability it lacks is ``None``,
+and the commands say so with ``missing(vendor, what)``.
+
+Generic code never compares vendor names: it asks ``get(frame.vendor)``.
+"""
+from __future__ import annotations
+
+import os
+
+TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
+if TYPE_CHECKING:
+    from .protocol import Vendor
+
+
+class Entry:
+    """A vendor's registry line: its name (``Frame.vendor``), how it is
+    shown, the suffixes of the files it reads, those of them a backup's
+    folders and archives are searched for, and its package."""
+
+    __slots__ = ("name", "title", "suffixes", "in_backups", "package", "fallback")
+
+    def __init__(self, name: str, title: str, suffixes: tuple[str, ...],
+                 in_backups: tuple[str, ...], package: str, fallback: bool = False):
+        self.name, self.title, self.suffixes = name, title, suffixes
+        self.in_backups, self.package, self.fallback = in_backups, package, fallback
+
+
+# A file of unknown suffix is sniffed by each vendor in this order; the
+# fallback reads what none claims (a KRL data list has no first word of its own).
+VENDORS = (
+    Entry("abb", "ABB", (".mod", ".modx", ".sys", ".sysx", ".prg"),
+          (".mod", ".modx", ".sys", ".sysx", ".prg"), "ucsio.vendors.abb"),
+    # a KUKA backup's frames are in .dat files; its .src programs are read on their own
+    Entry("kuka", "KUKA", (".dat", ".src", ".sub"), (".dat",), "ucsio.vendors.kuka",
+          fallback=True),
+    Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc"),
+)
+BY_NAME = {e.name: e for e in VENDORS}
+# every suffix a backup's folders and archives are searched for
+BACKUP_SUFFIXES = tuple(s for e in VENDORS for s in e.in_backups)
+
+_loaded: dict[str, Vendor] = {}
+
+
+def get(name: str) -> Vendor:
+    """The vendor called ``name``, its package imported on first use."""
+    vendor = _loaded.get(name)
+    if vendor is None:
+        import importlib
+        vendor = _loaded[name] = importlib.import_module(BY_NAME[name].package).VENDOR
+    return vendor
+
+
+def title(name: str) -> str:
+    return BY_NAME[name].title
+
+
+def by_suffix(path: str) -> str | None:
+    """The vendor whose files end as ``path`` does, or None."""
+    suffix = os.path.splitext(path)[1].lower()
+    for e in VENDORS:
+        if suffix in e.suffixes:
+            return e.name
+    return None
+
+
+def detect(doc) -> str:
+    """The vendor of a document: by its suffix, else by its first words."""
+    name = by_suffix(doc.path)
+    if name is not None:
+        return name
+    for e in VENDORS:
+        if not e.fallback and get(e.name).sniff(doc):
+            return e.name
+    return next(e.name for e in VENDORS if e.fallback)
+
+
+def missing(name: str, what: str) -> str:
+    """The plain words for a capability a vendor lacks: "KUKA has no program
+    writer yet"."""
+    return f"{title(name)} has no {what} yet"
+
+
+def lint_codes() -> dict[str, str]:
+    """Every vendor's lint codes (``check --ignore`` accepts exactly these),
+    from each vendor's ``lints`` module: a table, imported without its parser."""
+    import importlib
+    out: dict[str, str] = {}
+    for e in VENDORS:
+        out.update(importlib.import_module(e.package + ".lints").LINT_CODES)
+    return out
