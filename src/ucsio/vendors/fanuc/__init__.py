@@ -39,10 +39,12 @@ class Fanuc:
 
     # -- orientation and numbers ------------------------------------------------------
 
-    # -- writing frames (patch) -------------------------------------------------------
+    # -- robot positions (solve --robot) ------------------------------------------------
 
-    # -- taught points, robot positions, unset frames, programs ---------------------
+    # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None
+
+    # -- taught points, unset frames, comparing frames (diff) ---------------------------
 
 
 VENDOR = Fanuc()

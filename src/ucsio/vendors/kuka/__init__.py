@@ -23,10 +23,12 @@ class Kuka:
 
     # -- orientation and numbers ------------------------------------------------------
 
-    # -- writing frames (patch) -------------------------------------------------------
+    # -- robot positions (solve --robot) ------------------------------------------------
 
-    # -- taught points, robot positions, unset frames, programs ---------------------
+    # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None
+
+    # -- taught points, unset frames, comparing frames (diff) ---------------------------
 
 
 VENDOR = Kuka()
