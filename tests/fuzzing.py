@@ -65,12 +65,13 @@ TOKENS = [
 def seed_files(max_size: int | None = None) -> list[Path]:
     """Real files first (the corpus, where it is beside the checkout), then
     our fixtures; optionally only those up to ``max_size`` bytes."""
+    from ucsio.vendors import BACKUP_SUFFIXES, VENDORS   # every registered vendor's files
+
     found = []
-    for folder in (CORPUS / "abb", CORPUS / "kuka", CORPUS / "fanuc", ROOT / "fixtures"):
+    for folder in [CORPUS / e.name for e in VENDORS] + [ROOT / "fixtures"]:
         if folder.is_dir():
             for p in sorted(folder.rglob("*")):
-                if p.is_file() and p.suffix.lower() in (".mod", ".modx", ".sys", ".prg", ".dat",
-                                                        ".va", ".dg", ".ls"):
+                if p.is_file() and p.suffix.lower() in BACKUP_SUFFIXES:
                     if max_size is None or p.stat().st_size <= max_size:
                         found.append(p)
     return found

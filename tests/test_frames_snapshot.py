@@ -1,7 +1,7 @@
 """Every controller file's frames, against a stored snapshot (issue 26, point 6).
 
 ``frames --json --all`` (in-process: ``ucsio.api.frames``) of every file of
-the shared corpus ucsio reads (abb, kuka, fanuc) and of every controller file
+the shared corpus of every registered vendor (ucsio.vendors) and of every controller file
 among the fixtures, compared with tests/expected/frames_snapshot.json: per
 file, each frame's name, type, reference, parent, label, set, and x y z a b c
 rounded to 1e-6 (a file that cannot be read: its error's message). It guards
@@ -26,10 +26,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))   # conftest, also as a
 
 from conftest import CORPUS, FIXTURES  # noqa: E402
 
+from ucsio import vendors as registry  # noqa: E402
+
 SNAPSHOT = Path(__file__).resolve().parent / "expected" / "frames_snapshot.json"
-VENDORS = ("abb", "kuka", "fanuc")
-# what ucsio reads in a backup (written out here: the test outlives where the reader lives)
-SUFFIXES = (".mod", ".modx", ".sys", ".sysx", ".prg", ".dat", ".va", ".dg", ".ls")
+# Every registered vendor's corpus folder, every suffix a backup is read for: a
+# vendor added to the registry has its files here (without a snapshot until --update).
+VENDORS = tuple(e.name for e in registry.VENDORS)
+SUFFIXES = registry.BACKUP_SUFFIXES
 
 
 def _files(folder: Path) -> list[Path]:
@@ -72,6 +75,9 @@ def _compare(files: dict[str, Path]) -> None:
     want = stored()
     missing = sorted(set(files) - set(want))
     assert not missing, f"files without a snapshot (run this file with --update): {missing}"
+    prefix = next(iter(files)).split("/", 1)[0] + "/"
+    gone = sorted(n for n in want if n.startswith(prefix) and n not in files)
+    assert not gone, f"files in the snapshot no longer read: {gone}"
     changed = [name for name, p in files.items() if snapshot_of(p) != want[name]]
     assert not changed, f"frames changed in {changed} (this file's docstring says how to update)"
 
