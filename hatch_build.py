@@ -20,8 +20,9 @@ class CustomBuildHook(BuildHookInterface):
         sys.path.insert(0, str(Path(self.root) / "src"))
         try:
             from ucsio.parsing import grammar
+            from ucsio.vendors import GRAMMARS
         finally:
             sys.path.pop(0)
         out = Path(tempfile.mkdtemp(prefix="ucsio-tables-"))
-        for path in grammar.write_tables(out):
+        for path in grammar.write_tables(out, GRAMMARS):
             build_data["force_include"][path] = f"ucsio/grammars/{Path(path).name}"

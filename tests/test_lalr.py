@@ -26,6 +26,7 @@ from ucsio.vendors.kuka import krl
 from ucsio.vendors.abb import rapid
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
+from ucsio.vendors import GRAMMARS
 from ucsio.errors import UcsioError
 from ucsio.parsing.lalr import Rejected, noncapturing
 
@@ -285,19 +286,19 @@ def test_the_wheel_s_tables_are_found_beside_the_grammars(tmp_path, monkeypatch)
 
     from ucsio.vendors.abb import taught as abb
 
-    assert {(rapid.__name__.rsplit(".")[-1], rapid.START), ("krl", krl.START)} <= set(grammar.BUILT)
-    assert ("rapid", ("statements",)) in grammar.BUILT      # diff --points (taught.abb)
+    assert {(rapid.__name__.rsplit(".")[-1], rapid.START), ("krl", krl.START)} <= set(GRAMMARS)
+    assert ("rapid", ("statements",)) in GRAMMARS      # diff --points (taught.abb)
     assert abb._statement_parser() is grammar.parser("rapid", ("statements",))
     shipped = tmp_path / "grammars"
     shipped.mkdir()
     for g in Path(grammar.grammar_dir()).glob("*.lark"):
         shutil.copy(g, shipped / g.name)
-    written = grammar.write_tables(shipped)
-    assert len(written) == len(grammar.BUILT)
+    written = grammar.write_tables(shipped, GRAMMARS)
+    assert len(written) == len(GRAMMARS)
     monkeypatch.setattr(grammar, "grammar_dir", lambda: shipped)
     monkeypatch.setattr(grammar, "lark_parser", None)          # building would fail
     monkeypatch.setenv("UCSIO_CACHE_DIR", str(tmp_path / "cache"))
-    for name, start in grammar.BUILT:
+    for name, start in GRAMMARS:
         assert grammar.tables(name, start)["format"] == lalr.FORMAT
     assert not (tmp_path / "cache").exists()
 

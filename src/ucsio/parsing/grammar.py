@@ -66,12 +66,6 @@ def parse(name: str, start: tuple[str, ...], text: str, symbol: str,
     return from_lark(tree)      # not reached while the two agree (tests/test_lalr.py)
 
 
-# The parsers ucsio runs: (grammar, start symbols). A wheel ships their
-# tables beside the grammars (hatch_build.py calls write_tables).
-BUILT = (("rapid", ("file", "data_decl")), ("rapid", ("statements",)), ("krl", ("file",)),
-         ("va", ("file",)), ("tp", ("file",)))
-
-
 def tables(name: str, start: tuple[str, ...]) -> dict:
     """The LALR tables: shipped beside the grammars (an installed wheel), or
     from the disk cache, or (a source checkout's first run, a changed
@@ -111,13 +105,14 @@ def _stem(name: str, start: tuple[str, ...]) -> str:
     return "-".join((name, *start))
 
 
-def write_tables(folder) -> list[str]:
-    """Every parser's tables, built with Lark, written into ``folder`` under
-    the names ``tables`` looks for beside the grammars."""
+def write_tables(folder, built) -> list[str]:
+    """The tables of each parser in ``built`` ((grammar, start symbols): the
+    registry's ``vendors.GRAMMARS``), built with Lark, written into ``folder``
+    under the names ``tables`` looks for beside the grammars."""
     import marshal
 
     written = []
-    for name, start in BUILT:
+    for name, start in built:
         path = os.path.join(folder, f"{_stem(name, start)}.tables.marshal")
         with open(path, "wb") as fh:
             fh.write(marshal.dumps(_from_lark(name, start), 4))

@@ -23,27 +23,34 @@ class Entry:
     shown, the suffixes of the files it reads, those of them a backup's
     folders and archives are searched for, and its package."""
 
-    __slots__ = ("name", "title", "suffixes", "in_backups", "package", "fallback")
+    __slots__ = ("name", "title", "suffixes", "in_backups", "package", "grammars", "fallback")
 
     def __init__(self, name: str, title: str, suffixes: tuple[str, ...],
-                 in_backups: tuple[str, ...], package: str, fallback: bool = False):
+                 in_backups: tuple[str, ...], package: str,
+                 grammars: tuple[tuple[str, tuple[str, ...]], ...], fallback: bool = False):
         self.name, self.title, self.suffixes = name, title, suffixes
         self.in_backups, self.package, self.fallback = in_backups, package, fallback
+        # (grammars/NAME.lark, start symbols) of each parser its package runs:
+        # the wheel ships their LALR tables (hatch_build.py)
+        self.grammars = grammars
 
 
 # A file of unknown suffix is sniffed by each vendor in this order; the
 # fallback reads what none claims (a KRL data list has no first word of its own).
 VENDORS = (
     Entry("abb", "ABB", (".mod", ".modx", ".sys", ".sysx", ".prg"),
-          (".mod", ".modx", ".sys", ".sysx", ".prg"), "ucsio.vendors.abb"),
+          (".mod", ".modx", ".sys", ".sysx", ".prg"), "ucsio.vendors.abb",
+          (("rapid", ("file", "data_decl")), ("rapid", ("statements",)))),
     # a KUKA backup's frames are in .dat files; its .src programs are read on their own
     Entry("kuka", "KUKA", (".dat", ".src", ".sub"), (".dat",), "ucsio.vendors.kuka",
-          fallback=True),
-    Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc"),
+          (("krl", ("file",)),), fallback=True),
+    Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc",
+          (("va", ("file",)), ("tp", ("file",)))),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
 BACKUP_SUFFIXES = tuple(s for e in VENDORS for s in e.in_backups)
+GRAMMARS = tuple(g for e in VENDORS for g in e.grammars)
 
 _loaded: dict[str, Vendor] = {}
 
