@@ -64,7 +64,25 @@ FANUC_FLOOR = ("import re,sys\n"
                "d=open(sys.argv[1],'rb').read()\n"
                "n=sum(1 for m in re.finditer(rb'(?m)^[ \\t]*\\[(\\d+),(\\d+)\\] = ', d))\n")
 
+# a floor any vendor's file has: start Python, read the bytes, count the lines
+PLAIN_FLOOR = "import sys\nn=open(sys.argv[1],'rb').read().count(b'\\n')\n"
+
 PYTHON = sys.executable      # the plain venv's, once main() has made it
+
+
+def largest_of_each_vendor() -> list[tuple[str, Path]]:
+    """Every registered vendor's largest corpus file among those it reads:
+    a vendor added to the registry is timed here without a line of its own."""
+    sys.path.insert(0, str(ROOT / "src"))
+    from ucsio.vendors import VENDORS
+    out = []
+    for e in VENDORS:
+        files = [p for p in (CORPUS / e.name).rglob("*")
+                 if p.is_file() and p.suffix.lower() in e.suffixes] \
+            if (CORPUS / e.name).is_dir() else []
+        if files:
+            out.append((e.title, max(files, key=lambda p: (p.stat().st_size, p.name))))
+    return out
 
 
 # What the ``ucsio`` command that pip installs runs (its console script,
@@ -171,6 +189,13 @@ def main(argv=None) -> int:
                 if target is not None else "(start-up alone)"
             print(f"{label:<34} {cmd:<8} {t_u * 1000:7.1f}ms {t_f * 1000:7.1f}ms {ratio:6.2f}"
                   f"  {verdict}")
+        # every registered vendor, its largest corpus file: reported, no target of its own
+        for title, path in largest_of_each_vendor():
+            label = f"{title}, largest corpus file, {path.stat().st_size // 1000} KB"[:34]
+            t_u, t_f = alternate(ucsio("frames", str(path)), [PYTHON, "-c", PLAIN_FLOOR, str(path)],
+                                 args.rounds)
+            print(f"{label:<34} {'frames':<8} {t_u * 1000:7.1f}ms {t_f * 1000:7.1f}ms "
+                  f"{t_u / t_f:6.2f}  (each vendor; floor: read the bytes)")
     print()
     print("rerun: python benchmarks/bench_cold.py [--rounds N]")
     return 0 if ok else 1
