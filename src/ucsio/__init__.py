@@ -1,4 +1,4 @@
-"""ucsio: measured user frames for ABB RAPID and KUKA KRL controller files.
+"""ucsio: measured user frames for robot controller files (ABB RAPID, KUKA KRL, FANUC).
 
 The Python API mirrors the commands in ``ucsio.api`` (frames, check, solve,
 diff_frame, taught_points, diff_files, diff_backups, patch, save, batch, plan,
