@@ -1,7 +1,8 @@
 """An orientation convention, vendor-free: how a table names a frame's three
-angles, in which order they are written, and whether the orientation is
-written as a quaternion. Each vendor declares its own (``vendors.<name>``,
-``angles``); geometry reads only this description, never a vendor's name.
+angles, in which order they are written, whether the orientation is written
+as a quaternion, and its columns in SPEC's measurement CSV. Each vendor
+declares its own (``vendors.<name>``: ``angles``, ``measurement_columns``);
+geometry and the readers read only this description, never a vendor's name.
 
 Every convention here is the one matrix R = Rz(A)·Ry(B)·Rx(C) (``Pose.abc``
 is A, B, C); a convention differs in the names of the three angles and the
@@ -22,6 +23,17 @@ class AngleColumns:
 
     def __init__(self, names: tuple[str, str, str], keys: str, quaternion: bool = False):
         self.names, self.keys, self.quaternion = names, keys, quaternion
+
+
+class MeasurementColumns:
+    """A vendor's flange orientation columns in SPEC's measurement CSV: their
+    ``names`` in the order read, how messages name them (``short``:
+    ``robot_a/b/c``), and with whose they are (``label``: ``robot_a/b/c (KUKA)``)."""
+
+    __slots__ = ("names", "short", "label")
+
+    def __init__(self, names: tuple[str, ...], short: str, who: str):
+        self.names, self.short, self.label = names, short, f"{short} ({who})"
 
 
 #: Pose.abc's own names: a table of frames of several conventions shows these.

@@ -8,10 +8,9 @@ from __future__ import annotations
 
 from typing import Any, Callable, Protocol, runtime_checkable
 
-from ..geometry.angles import AngleColumns
+from ..geometry.angles import AngleColumns, MeasurementColumns
 from ..parsing.document import Document
 from ..parsing.model import ControllerFile
-from .common.orientation import MeasurementColumns
 
 
 @runtime_checkable

@@ -5,9 +5,8 @@ methods import the parser and the rest only when called.
 """
 from __future__ import annotations
 
-from ...geometry.angles import AngleColumns
+from ...geometry.angles import AngleColumns, MeasurementColumns
 from .. import BY_NAME
-from ..common.orientation import MeasurementColumns
 
 
 class Abb:
@@ -38,7 +37,7 @@ class Abb:
     def robot_positions(self, path: str, config, tool: str, wobj: str, load):
         """A module's robtargets: the TCP of ``tool`` in ``wobj``'s object frame."""
         from .robot import read
-        return read(path, config, tool, wobj, load)
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None

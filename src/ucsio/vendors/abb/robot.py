@@ -21,15 +21,16 @@ from ...errors import UcsioError
 from ...geometry.arrays import flange_matrices
 from ...geometry.frames import Pose
 from ..common.robot import RobotPose, RobotPoses, matrix
-from . import VENDOR
 from .rapid import robtargets
 
 
-def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
-    """A module's robtargets as flange poses in world."""
+def read(vendor, path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
+    """A module's robtargets as flange poses in world, in ``vendor``'s
+    convention (the package's VENDOR, handed in: this module does not import
+    its package back)."""
     cf = load(path, full=True)
     targets = robtargets(cf)
-    lookup = _AbbLookup(cf, config, load)
+    lookup = _AbbLookup(cf, config, load, vendors.BY_NAME[vendor.name].suffixes)
     tool_pose = lookup.tool(tool)
     uframe, oframe = lookup.wobj(wobj)
     identity = tool_pose is None and uframe is None and oframe is None
@@ -40,7 +41,7 @@ def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPose
         if t.pose is None:
             continue
         if identity:     # tool0 in wobj0: the numbers as written, as the CSV reads them
-            rp.flange = flange_matrices(VENDOR.angles, np.array([t.pose.q]),
+            rp.flange = flange_matrices(vendor.angles, np.array([t.pose.q]),
                                         np.array([t.pose.t]))[0]
             continue
         flange = t.pose
@@ -50,15 +51,16 @@ def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPose
         if tool_pose is not None:
             flange = flange.compose(tool_pose.inverse())
         rp.flange = matrix(flange)
-    return RobotPoses(path, VENDOR.name, poses, VENDOR.name, lookup.warnings)
+    return RobotPoses(path, vendor.name, poses, vendor.name, lookup.warnings)
 
 
 class _AbbLookup:
     """tooldata and wobjdata by name: the module, its folder, --config."""
 
-    def __init__(self, cf, config: str | None, load):
+    def __init__(self, cf, config: str | None, load, modules: tuple[str, ...]):
         self.cf = cf
         self.config, self.load = config, load
+        self.modules = modules          # the suffixes of the modules beside it
         self.warnings: list[str] = []
         self._files = None
 
@@ -67,10 +69,9 @@ class _AbbLookup:
             load = self.load
             here = Path(self.cf.path)
             files = [self.cf]
-            modules = vendors.BY_NAME[VENDOR.name].suffixes
             try:
                 siblings = sorted(p for p in here.parent.iterdir()
-                                  if p.suffix.lower() in modules and p.is_file()
+                                  if p.suffix.lower() in self.modules and p.is_file()
                                   and p.resolve() != here.resolve())
             except OSError:
                 siblings = []

@@ -1,25 +1,15 @@
 """The vendors' orientation conventions as generic code asks for them.
 
 Each vendor declares ``angles`` (a ``geometry.angles.AngleColumns``: its
-angle names and order, or its quaternion) and ``measurement_columns`` (its
-orientation columns in SPEC's measurement CSV). Tables and the measurement
+angle names and order, or its quaternion) and ``measurement_columns`` (a
+``geometry.angles.MeasurementColumns``: its orientation columns in SPEC's
+measurement CSV). Tables and the measurement
 reader ask here, by a frame's or a file's vendor name, never naming one.
 """
 from __future__ import annotations
 
 from ... import vendors
-from ...geometry.angles import POSE_ANGLES, AngleColumns
-
-
-class MeasurementColumns:
-    """A vendor's flange orientation columns in SPEC's measurement CSV: their
-    ``names`` in the order read, how messages name them (``short``:
-    ``robot_a/b/c``), and with whose they are (``label``: ``robot_a/b/c (KUKA)``)."""
-
-    __slots__ = ("names", "short", "label")
-
-    def __init__(self, names: tuple[str, ...], short: str, who: str):
-        self.names, self.short, self.label = names, short, f"{short} ({who})"
+from ...geometry.angles import POSE_ANGLES, AngleColumns, MeasurementColumns
 
 
 def angle_columns(names) -> AngleColumns:

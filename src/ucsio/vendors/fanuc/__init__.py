@@ -6,8 +6,7 @@ what the three readers share.
 """
 from __future__ import annotations
 
-from ...geometry.angles import AngleColumns
-from ..common.orientation import MeasurementColumns
+from ...geometry.angles import AngleColumns, MeasurementColumns
 
 
 class Fanuc:
@@ -51,7 +50,7 @@ class Fanuc:
     def robot_positions(self, path: str, config, tool: str, wobj: str, load):
         """A TP program's positions (in their UF and UT), or posreg.va's registers."""
         from .robot import read
-        return read(path, config, tool, wobj, load)
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None

@@ -27,17 +27,18 @@ from ...geometry.arrays import flange_matrices
 from ...geometry.frames import Pose
 from ...parsing.document import Document
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
-from . import VENDOR
 
 
-def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
-    """A TP program's positions, or posreg.va's registers, as flange poses in world."""
+def read(vendor, path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
+    """A TP program's positions, or posreg.va's registers, as flange poses in
+    world, in ``vendor``'s convention (the package's VENDOR, handed in: this
+    module does not import its package back)."""
     import os
     reader = program if os.path.splitext(path)[1].lower() == ".ls" else registers
-    return reader(path, config, tool, wobj, load)
+    return reader(vendor, path, config, tool, wobj, load)
 
 
-def program(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
+def program(vendor, path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
     from array import array
 
     from .tp import iter_positions
@@ -48,7 +49,7 @@ def program(path: str, config: str | None, tool: str, wobj: str, load) -> RobotP
                          "registers (or ABB's); a TP program's positions give their own UF "
                          "and UT", file=path)
     doc = Document.read(path)
-    frames = _FanucFrames(config, load)
+    frames = _FanucFrames(config, load, vendor.name)
     poses = []
     taught = []                         # (pose, UF, UT): the flanges are made at once
     values = array("d")                 # their X Y Z W P R
@@ -76,11 +77,11 @@ def program(path: str, config: str | None, tool: str, wobj: str, load) -> RobotP
             continue
         taught.append((rp, user, tool_pose))
         values.extend(xyzwpr)
-    _fanuc_flanges(taught, values)
-    return RobotPoses(path, VENDOR.name, poses, VENDOR.name)
+    _fanuc_flanges(vendor.angles, taught, values)
+    return RobotPoses(path, vendor.name, poses, vendor.name)
 
 
-def _fanuc_flanges(taught: list, values) -> None:
+def _fanuc_flanges(angles, taught: list, values) -> None:
     """``_fanuc_flange`` of every position at once, as arrays: a path
     program has 100,000 positions, and Pose algebra per position took 10 s.
     ``taught``: (RobotPose, UF pose or None, UT pose or None), the same pose
@@ -89,7 +90,7 @@ def _fanuc_flanges(taught: list, values) -> None:
     if not taught:
         return
     xyzwpr = np.frombuffer(values, dtype=float).reshape(-1, 6)
-    flanges = flange_matrices(VENDOR.angles, xyzwpr[:, 3:], xyzwpr[:, :3])
+    flanges = flange_matrices(angles, xyzwpr[:, 3:], xyzwpr[:, :3])
     by_frames: dict = {}
     for i, (_, user, tool) in enumerate(taught):
         by_frames.setdefault((id(user), id(tool)), (user, tool, []))[2].append(i)
@@ -105,7 +106,7 @@ def _fanuc_flanges(taught: list, values) -> None:
         rp.flange = flange
 
 
-def registers(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
+def registers(vendor, path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
     from .va import register_list
 
     doc = Document.read(path)
@@ -115,7 +116,7 @@ def registers(path: str, config: str | None, tool: str, wobj: str, load) -> Robo
                          "TP program (.ls)", file=path)
     uf = _frame_number(wobj, "wobj0", "UF", "--robot-wobj", "user frame")
     ut = _frame_number(tool, "tool0", "UT", "--robot-tool", "tool frame")
-    frames = _FanucFrames(config, load)
+    frames = _FanucFrames(config, load, vendor.name)
     user = frames.pose("UF", uf, None, "--robot-wobj", 0)
     tool_pose = frames.pose("UT", ut, None, "--robot-tool", 0)
     note = None
@@ -138,8 +139,8 @@ def registers(path: str, config: str | None, tool: str, wobj: str, load) -> Robo
             rp.problem = doc.error(f"{name}: {why}", pos)
             continue
         xyzwpr = [values[k].value for k in ("X", "Y", "Z", "W", "P", "R")]
-        rp.flange = _fanuc_flange(xyzwpr, user, tool_pose)
-    return RobotPoses(path, VENDOR.name, poses, VENDOR.name)
+        rp.flange = _fanuc_flange(vendor.angles, xyzwpr, user, tool_pose)
+    return RobotPoses(path, vendor.name, poses, vendor.name)
 
 
 def _not_cartesian(values: dict, joint: bool) -> str | None:
@@ -172,15 +173,15 @@ class _FanucFrames:
     """Group 1's user and tool frames from ``--config`` (a sysframe.va, or
     any FANUC file listing them), loaded when first needed."""
 
-    def __init__(self, config: str | None, load):
-        self.config, self.load = config, load
+    def __init__(self, config: str | None, load, vendor: str):
+        self.config, self.load, self.vendor = config, load, vendor
         self.cf = None
         self.found: dict = {}           # (UF or UT, n): the pose, once found
 
     def _load(self):
         if self.cf is None:
             cf = self.load(self.config)
-            if cf.vendor != VENDOR.name:
+            if cf.vendor != self.vendor:
                 raise UcsioError(f"--config {self.config}: a {cf.vendor.upper()} file; the UF "
                                  "and UT of FANUC positions come from a sysframe.va",
                                  file=self.config)
@@ -230,12 +231,12 @@ def _same_pose(a: Pose, b: Pose) -> bool:
         rot.quat_angle(a.q, b.q) <= 1e-6
 
 
-def _fanuc_flange(xyzwpr, user: Pose | None, tool: Pose | None) -> np.ndarray:
+def _fanuc_flange(angles, xyzwpr, user: Pose | None, tool: Pose | None) -> np.ndarray:
     """UF * P * UT^-1 as a 4x4 matrix (None: world, the faceplate)."""
     x, y, z, w, p, r = xyzwpr
     if user is None and tool is None:
         # the numbers as written, through the same conversion as the CSV's robot_w/p/r
-        return flange_matrices(VENDOR.angles, np.array([[w, p, r]]), np.array([[x, y, z]]))[0]
+        return flange_matrices(angles, np.array([[w, p, r]]), np.array([[x, y, z]]))[0]
     flange = Pose.from_wpr(x, y, z, w, p, r)
     if user is not None:
         flange = user.compose(flange)

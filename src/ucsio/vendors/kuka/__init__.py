@@ -5,8 +5,7 @@ methods import the parser and the rest only when called.
 """
 from __future__ import annotations
 
-from ...geometry.angles import AngleColumns
-from ..common.orientation import MeasurementColumns
+from ...geometry.angles import AngleColumns, MeasurementColumns
 
 
 class Kuka:
@@ -35,7 +34,7 @@ class Kuka:
     def robot_positions(self, path: str, config, tool: str, wobj: str, load):
         """A program .dat's positions, each in the base and tool its FDAT names."""
         from .robot import read
-        return read(path, config, tool, wobj, load)
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None

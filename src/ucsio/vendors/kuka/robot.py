@@ -19,14 +19,14 @@ from ...geometry.arrays import flange_matrices
 from ...geometry.frames import Pose
 from ...parsing.document import Document
 from ..common.robot import RobotPose, RobotPoses, matrix
-from . import VENDOR
 from .krl import positions
 
 
-def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
-    """A program .dat's positions as flange poses in world. ``tool`` and
-    ``wobj`` are not asked: each position names its own (its FDAT); ``load``
-    reads ``--config``, a file of any vendor."""
+def read(vendor, path: str, config: str | None, tool: str, wobj: str, load) -> RobotPoses:
+    """A program .dat's positions as flange poses in world, in ``vendor``'s
+    convention (the package's VENDOR, handed in: this module does not import
+    its package back). ``tool`` and ``wobj`` are not asked: each position
+    names its own (its FDAT); ``load`` reads ``--config``, a file of any vendor."""
     doc = Document.read(path)
     cfg = None
     poses = []
@@ -48,7 +48,7 @@ def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPose
         if not tool_no and not base_no:
             x, y, z = p.pose.t
             # the numbers as written, through the same conversion as the CSV
-            rp.flange = flange_matrices(VENDOR.angles, np.array([p.pose.abc]),
+            rp.flange = flange_matrices(vendor.angles, np.array([p.pose.abc]),
                                         np.array([[x, y, z]]))[0]
             continue
         if config is None:
@@ -68,7 +68,7 @@ def read(path: str, config: str | None, tool: str, wobj: str, load) -> RobotPose
             rp.problem = UcsioError(exc.message, **where)
             continue
         rp.flange = matrix(flange)
-    return RobotPoses(path, VENDOR.name, poses, VENDOR.name, warnings)
+    return RobotPoses(path, vendor.name, poses, vendor.name, warnings)
 
 
 def _kuka_entry(cfg, kind: str, n: int, who: str) -> Pose:
