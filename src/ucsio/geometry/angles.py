@@ -28,7 +28,8 @@ class AngleColumns:
 class MeasurementColumns:
     """A vendor's flange orientation columns in SPEC's measurement CSV: their
     ``names`` in the order read, how messages name them (``short``:
-    ``robot_a/b/c``), and with whose they are (``label``: ``robot_a/b/c (KUKA)``)."""
+    ``robot_a/b/c``), and that name with the vendor's (``label``:
+    ``robot_a/b/c (KUKA)``)."""
 
     __slots__ = ("names", "short", "label")
 

@@ -34,18 +34,18 @@ import re
 
 import numpy as np
 
+from .. import vendors
 from ..defaults import LENGTH_UNITS, MAX_MAGNITUDE
 from ..errors import UcsioError
-from .. import vendors
 from ..geometry.arrays import flange_matrices
 from ..method.measurement import Measurement, spec_orientation
-from ..vendors.common.orientation import measurement_forms
 from ..parsing.document import text_lines
+from ..vendors.common.orientation import measurement_forms
 from .text import read_text, too_large
 
 #: Each vendor's orientation columns, by its name (``Measurement.form``), as
 #: the vendors declare them (``measurement_columns``).
-FORMS = {name: cols for name, cols in measurement_forms()}
+FORMS = dict(measurement_forms())
 POSITION = ("laser_x", "laser_y", "laser_z", "robot_x", "robot_y", "robot_z")
 KNOWN = set(POSITION) | {"point", "weight"} | {c for cols in FORMS.values() for c in cols.names}
 

@@ -33,7 +33,6 @@ class Vendor(Protocol):
     measurement_columns: MeasurementColumns | None
 
     # Capabilities: None where the vendor has none.
-
     # solve --robot: the flange poses in world of a file of its positions, for the
     # suffixes it lists. ``load`` reads a controller file of any vendor as every
     # command does (binary and foreign files refused): the front passes it in, so a
