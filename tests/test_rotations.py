@@ -348,6 +348,7 @@ def test_fanuc_vs_robodk():
 
 # -- the same conventions over arrays (ucsio.geometry.arrays) ---------------------
 def test_array_conventions_vs_scipy_and_the_single_pose_forms():
+    from ucsio import vendors
     from ucsio.geometry import arrays
 
     rng = np.random.default_rng(7)
@@ -364,7 +365,7 @@ def test_array_conventions_vs_scipy_and_the_single_pose_forms():
     # FANUC W, P, R: fixed axes x, y, z, i.e. Rz(R) Ry(P) Rx(W)
     wpr = abc[:, ::-1]
     pos = rng.normal(0, 500, (200, 3))
-    T = arrays.flange_matrices("fanuc", wpr, pos)
+    T = arrays.flange_matrices(vendors.get("fanuc").angles, wpr, pos)
     np.testing.assert_allclose(T[:, :3, :3], Rotation.from_euler("xyz", wpr, degrees=True).as_matrix(),
                                atol=1e-12)
     np.testing.assert_array_equal(T[:, :3, 3], pos)

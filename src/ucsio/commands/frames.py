@@ -66,8 +66,8 @@ def run(args) -> int:
     frames = [f for _, c in parsed for f in c.frames if args.all or is_set(f, c)]
     unset = sum(len(c.frames) for _, c in parsed) - len(frames)
     # the vendor's own angle names where every frame is one vendor's (FANUC W, P, R; ABB
-    # RobotStudio's rx, ry, rz beside the quaternion), else KUKA's a, b, c
-    from ..geometry.frames import angle_columns
+    # RobotStudio's rx, ry, rz beside the quaternion), else Pose.abc's a, b, c
+    from ..vendors.common.orientation import angle_columns
     cols = angle_columns({f.vendor for f in frames})
     rows = []
     for f in frames:

@@ -46,22 +46,24 @@ def quats_to_matrices(q: np.ndarray) -> np.ndarray:
     return quat_to_matrix(q / np.linalg.norm(q, axis=1, keepdims=True))
 
 
-def flange_matrices(form: str, orientation: np.ndarray, position: np.ndarray) -> np.ndarray:
-    """(n, 4, 4) flange poses from positions and orientations written the
-    vendor's way: "kuka" A, B, C; "fanuc" W, P, R; "abb" quaternions."""
-    if form == "kuka":
-        R = abc_to_matrices(orientation)
-    elif form == "fanuc":
-        R = abc_to_matrices(np.asarray(orientation, dtype=float)[:, ::-1])   # W,P,R -> A=R, B=P, C=W
-    elif form == "abb":
+def flange_matrices(convention, orientation: np.ndarray, position: np.ndarray) -> np.ndarray:
+    """(n, 4, 4) flange poses from positions and orientations written in
+    ``convention`` (a ``geometry.angles.AngleColumns``): its three angles
+    (deg) in its order, or its quaternions (w, x, y, z)."""
+    if convention.quaternion:
         R = quats_to_matrices(orientation)
     else:
-        raise ValueError(form)
+        R = abc_to_matrices(_as_abc(np.asarray(orientation, dtype=float), convention.keys))
     T = np.zeros((len(R), 4, 4))
     T[:, :3, :3] = R
     T[:, :3, 3] = position
     T[:, 3, 3] = 1.0
     return T
+
+
+def _as_abc(angles: np.ndarray, keys: str) -> np.ndarray:
+    """(n, 3) angles written in the order ``keys`` -> (n, 3) A, B, C."""
+    return angles if keys == "abc" else angles[:, [keys.index(k) for k in "abc"]]
 
 
 def rotvecs_to_matrices(theta: np.ndarray) -> np.ndarray:

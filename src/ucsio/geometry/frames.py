@@ -16,37 +16,6 @@ if TYPE_CHECKING:
     from typing import Any
 
 
-class AngleColumns:
-    """How a vendor's users read a frame's three angles: their ``names`` in a
-    table, the ``keys`` of Pose.abc / a pose dict (``a b c``) each one is
-    (every vendor here uses the one matrix R = Rz(A)·Ry(B)·Rx(C); only the
-    names and their order differ), and whether the vendor writes a
-    ``quaternion`` that a table shows too."""
-
-    __slots__ = ("names", "keys", "quaternion")
-
-    def __init__(self, names: tuple[str, str, str], keys: str, quaternion: bool = False):
-        self.names, self.keys, self.quaternion = names, keys, quaternion
-
-
-#: Each vendor's own angle names: KUKA A, B, C; FANUC W, P, R (W = C, R = A);
-#: ABB's quaternion and RobotStudio's Euler ZYX angles rx, ry, rz (rx = C,
-#: rz = A). A vendor not listed, and a table of several vendors, read KUKA's.
-VENDOR_ANGLES = {
-    "kuka": AngleColumns(("a", "b", "c"), "abc"),
-    "fanuc": AngleColumns(("w", "p", "r"), "cba"),
-    "abb": AngleColumns(("rx", "ry", "rz"), "cba", quaternion=True),
-}
-
-
-def angle_columns(vendors) -> AngleColumns:
-    """The angle columns of a table of frames of ``vendors`` (one name, or
-    several: one vendor's own where they agree, else KUKA's)."""
-    names = {vendors} if isinstance(vendors, str) or vendors is None else set(vendors)
-    only = names.pop() if len(names) == 1 else None
-    return VENDOR_ANGLES.get(only, VENDOR_ANGLES["kuka"])
-
-
 class Pose(Value):
     """p_parent = R p_frame + t. ``q`` is canonical (w >= 0); ``abc`` is
     KUKA's A, B, C as written where the source gave them, else derived."""

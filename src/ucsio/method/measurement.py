@@ -9,11 +9,12 @@ from dataclasses import dataclass
 import numpy as np
 
 
-def spec_orientation(form: str, orientation: np.ndarray, angle_units: str = "deg",
-               quaternion_order: str = "wxyz") -> np.ndarray:
-    """The orientation columns as written -> SPEC's reading: degrees, and
+def spec_orientation(convention, orientation: np.ndarray, angle_units: str = "deg",
+                     quaternion_order: str = "wxyz") -> np.ndarray:
+    """The orientation columns as written in ``convention`` (a
+    ``geometry.angles.AngleColumns``) -> SPEC's reading: degrees, and
     quaternions with the real part first."""
-    if form == "abb":
+    if convention.quaternion:
         return orientation[:, [3, 0, 1, 2]] if quaternion_order == "xyzw" else orientation
     return np.degrees(orientation) if angle_units == "rad" else orientation
 
@@ -29,7 +30,7 @@ class Measurement:
     laser: np.ndarray        # (n, 3) mm, in the UCS (None: a robot-side file)
     flange: np.ndarray       # (n, 4, 4) flange pose in robot world (None: a laser-side file)
     weights: np.ndarray      # (n,)
-    form: str                # 'kuka' | 'abb' | 'fanuc'
+    form: str                # the orientation's vendor (its name: 'kuka', ...; 'none': laser only)
     orientation: np.ndarray  # (n, 3) or (n, 4) as written ((n, 0): not from a CSV)
 
     def __len__(self) -> int:

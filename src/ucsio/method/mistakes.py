@@ -24,6 +24,7 @@ from typing import Callable
 
 import numpy as np
 
+from .. import vendors
 from ..defaults import LENGTH_UNITS
 from ..errors import UcsioError
 from ..geometry.arrays import flange_matrices
@@ -115,16 +116,18 @@ def _laser_units(meas: Measurement, current: str) -> Alternative | None:
 def _orientation(meas: Measurement, reading: Reading) -> Alternative | None:
     written = meas.orientation
     position = meas.flange[:, :3, 3]
-    if meas.form == "abb":
+    vendor = vendors.get(meas.form)
+    convention, columns = vendor.angles, vendor.measurement_columns.short
+    if convention.quaternion:
         other = "xyzw" if reading.quaternion_order == "wxyz" else "wxyz"
-        flange = flange_matrices("abb", spec_orientation("abb", written, quaternion_order=other),
+        flange = flange_matrices(convention,
+                                 spec_orientation(convention, written, quaternion_order=other),
                                  position)
         real = "last (x, y, z, w)" if other == "xyzw" else "first (w, x, y, z)"
         return Alternative(_replace(meas, flange=flange), "quaternion_order", other,
-                           f"robot_q1..q4 look written with the real part {real}")
+                           f"{columns} look written with the real part {real}")
     if reading.angle_units == "deg" and np.all(np.abs(written) <= PI_WRITTEN):
-        columns = "robot_a/b/c" if meas.form == "kuka" else "robot_w/p/r"
-        flange = flange_matrices(meas.form, spec_orientation(meas.form, written, "rad"),
+        flange = flange_matrices(convention, spec_orientation(convention, written, "rad"),
                                  position)
         return Alternative(_replace(meas, flange=flange), "angle_units", "rad",
                            f"every angle of {columns} lies within ±π: they look written in "

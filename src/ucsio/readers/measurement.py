@@ -34,22 +34,20 @@ import re
 
 import numpy as np
 
+from .. import vendors
 from ..defaults import LENGTH_UNITS, MAX_MAGNITUDE
 from ..errors import UcsioError
 from ..geometry.arrays import flange_matrices
 from ..method.measurement import Measurement, spec_orientation
 from ..parsing.document import text_lines
+from ..vendors.common.orientation import measurement_forms
 from .text import read_text, too_large
 
-FORMS = {
-    "kuka": ("robot_a", "robot_b", "robot_c"),
-    "abb": ("robot_q1", "robot_q2", "robot_q3", "robot_q4"),
-    "fanuc": ("robot_w", "robot_p", "robot_r"),
-}
-FORM_LABEL = {"kuka": "robot_a/b/c (KUKA)", "abb": "robot_q1..q4 (ABB)",
-              "fanuc": "robot_w/p/r (Fanuc)"}
+#: Each vendor's orientation columns, by its name (``Measurement.form``), as
+#: the vendors declare them (``measurement_columns``).
+FORMS = dict(measurement_forms())
 POSITION = ("laser_x", "laser_y", "laser_z", "robot_x", "robot_y", "robot_z")
-KNOWN = set(POSITION) | {"point", "weight"} | {c for cols in FORMS.values() for c in cols}
+KNOWN = set(POSITION) | {"point", "weight"} | {c for cols in FORMS.values() for c in cols.names}
 
 #: A header name this close to a known one (difflib ratio) is taken for a
 #: typo of it: ``weigth``/``weight`` 0.83, ``laser-x``/``laser_x`` 0.86,
@@ -133,6 +131,12 @@ def _split(line: str, sep: str) -> list[tuple[str, int]]:
             return fields
 
 
+def _either(forms: dict) -> str:
+    """'robot_a/b/c (KUKA), robot_q1..q4 (ABB) or robot_w/p/r (Fanuc)'."""
+    labels = [cols.label for cols in forms.values()]
+    return ", ".join(labels[:-1]) + " or " + labels[-1] if len(labels) > 1 else labels[0]
+
+
 def read_measurement(path: str | os.PathLike, sides: tuple[str, ...] = SIDES,
                      what: str = "measurement file", **reading) -> Measurement:
     """Read a measurement CSV; UcsioError (exit 2) on anything wrong.
@@ -199,19 +203,19 @@ def parse_measurement(text: str, path: str = "<measurement>",
                 raise UcsioError(f"unknown column {name.strip()!r} \u2014 did you mean "
                                  f"{close[0]!r}?", file=path, line=header_line, col=col)
 
-    present = [form for form, cols in FORMS.items() if any(c in columns for c in cols)]
+    present = [form for form, cols in FORMS.items() if any(c in columns for c in cols.names)]
     if not robot_side:
         present = present[:1]       # the laser side of a merged file: orientation unused
     if len(present) > 1:
         raise UcsioError("flange orientation given in two forms: "
-                         + " and ".join(FORM_LABEL[f] for f in present)
+                         + " and ".join(FORMS[f].label for f in present)
                          + "; keep exactly one", file=path, line=header_line)
     if not present and robot_side:
-        raise UcsioError("no flange orientation columns: need robot_a/b/c (KUKA), "
-                         "robot_q1..q4 (ABB) or robot_w/p/r (Fanuc)", file=path, line=header_line)
+        raise UcsioError(f"no flange orientation columns: need {_either(FORMS)}",
+                         file=path, line=header_line)
     form = present[0] if present else "none"
     needed = ((POSITION[:3] if laser_side else ()) + (POSITION[3:] if robot_side else ())
-              + (FORMS[form] if robot_side else ()))
+              + (FORMS[form].names if robot_side else ()))
     missing = [c for c in needed if c not in columns]
     if missing:
         raise UcsioError(f"missing column{'s' if len(missing) > 1 else ''} "
@@ -280,15 +284,19 @@ def parse_measurement(text: str, path: str = "<measurement>",
     k = 3 if laser_side else 0
     position = values[:, k:k + 3]
     orientation = values[:, k + 3:]
-    if form == "abb":
+    convention = vendors.get(form).angles
+    if convention.quaternion:
         norms = np.linalg.norm(orientation, axis=1)
         bad = np.flatnonzero(np.abs(norms - 1.0) > QUAT_NORM_TOLERANCE)
         if bad.size:
             i = int(bad[0])
-            raise UcsioError(f"robot_q1..q4 is not a unit quaternion (norm {norms[i]:.6g})",
-                             file=path, line=lines[i], col=rows[i][1][columns["robot_q1"]][1])
-    flange = flange_matrices(form, spec_orientation(form, orientation, angle_units, quaternion_order),
-                             position)
+            first = FORMS[form].names[0]
+            raise UcsioError(f"{FORMS[form].short} is not a unit quaternion "
+                             f"(norm {norms[i]:.6g})",
+                             file=path, line=lines[i], col=rows[i][1][columns[first]][1])
+    flange = flange_matrices(
+        convention, spec_orientation(convention, orientation, angle_units, quaternion_order),
+        position)
     return Measurement(path=path, names=names, lines=lines,
                        laser=None if laser is None else laser.copy(), flange=flange,
                        weights=weights, form=form, orientation=orientation.copy())

@@ -17,8 +17,8 @@ import os
 import numpy as np
 
 from ..errors import UcsioError
+from ..vendors.common.robot import RobotPoses, few_names
 from .laser import LaserPoints
-from .robot import RobotPoses, _names
 from .text import content_lines, read_text, split
 
 MIN_PAIRS = 3
@@ -98,13 +98,14 @@ def pair(laser: LaserPoints, robot: RobotPoses, mapping=(), map_path: str | None
     lone_laser = [n for i, n in enumerate(laser.names) if i not in partner]
     lone_robot = [rp.name for k, rp in enumerate(robot.poses) if k not in taken]
     if lone_laser:
-        warnings.append(f"laser points without a robot position: {_names(lone_laser)}")
+        warnings.append(f"laser points without a robot position: {few_names(lone_laser)}")
     if lone_robot:
-        warnings.append(f"robot positions without a laser point: {_names(lone_robot)}")
+        warnings.append(f"robot positions without a laser point: {few_names(lone_robot)}")
     if len(partner) < MIN_PAIRS:
         raise UcsioError(f"only {len(partner)} point{'s' if len(partner) != 1 else ''} pair by "
-                         f"name between {laser.path} ({_names(laser.names, 5)}) and {robot.path} "
-                         f"({_names([p.name for p in robot.poses], 5)}); at least {MIN_PAIRS} "
+                         f"name between {laser.path} ({few_names(laser.names, 5)}) and "
+                         f"{robot.path} "
+                         f"({few_names([p.name for p in robot.poses], 5)}); at least {MIN_PAIRS} "
                          "needed (--map FILE pairs other names)")
     order = sorted(partner)
     flange = []

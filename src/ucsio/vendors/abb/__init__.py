@@ -5,6 +5,9 @@ methods import the parser and the rest only when called.
 """
 from __future__ import annotations
 
+from ...geometry.angles import AngleColumns, MeasurementColumns
+from .. import BY_NAME
+
 
 class Abb:
     name = "abb"
@@ -23,8 +26,18 @@ class Abb:
         return None
 
     # -- orientation and numbers ------------------------------------------------------
+    # quaternions (q1 real); tables show RobotStudio's Euler ZYX rx, ry, rz (rx = C, rz = A)
+    angles = AngleColumns(("rx", "ry", "rz"), "cba", quaternion=True)
+    measurement_columns = MeasurementColumns(("robot_q1", "robot_q2", "robot_q3", "robot_q4"),
+                                             "robot_q1..q4", "ABB")
 
     # -- robot positions (solve --robot) ------------------------------------------------
+    robot_suffixes = BY_NAME["abb"].suffixes        # every module and program
+
+    def robot_positions(self, path: str, config, tool: str, wobj: str, load):
+        """A module's robtargets: the TCP of ``tool`` in ``wobj``'s object frame."""
+        from .robot import read
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None

@@ -6,6 +6,8 @@ what the three readers share.
 """
 from __future__ import annotations
 
+from ...geometry.angles import AngleColumns, MeasurementColumns
+
 
 class Fanuc:
     name = "fanuc"
@@ -38,8 +40,17 @@ class Fanuc:
         return None
 
     # -- orientation and numbers ------------------------------------------------------
+    angles = AngleColumns(("w", "p", "r"), "cba")       # W, P, R: W = C, R = A
+    measurement_columns = MeasurementColumns(("robot_w", "robot_p", "robot_r"), "robot_w/p/r",
+                                             "Fanuc")
 
     # -- robot positions (solve --robot) ------------------------------------------------
+    robot_suffixes = (".ls", ".va")     # a TP program's /POS, posreg.va's registers
+
+    def robot_positions(self, path: str, config, tool: str, wobj: str, load):
+        """A TP program's positions (in their UF and UT), or posreg.va's registers."""
+        from .robot import read
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None
