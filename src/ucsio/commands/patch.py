@@ -147,7 +147,7 @@ def run(args) -> int:
     from ..parsing.controller import load
     from ..errors import UsageError
     from ..output import paint_diff
-    from ..review.patch import save
+    from ..review.save import save
 
     if args.backup and not args.in_place:
         raise UsageError("ucsio patch: --backup goes with --in-place")
