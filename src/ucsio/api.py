@@ -42,7 +42,7 @@ from .parsing.model import ControllerFile
 from .results import (BackupsDiff, BatchOutput, CheckResult, DemoResult, DiffResult, FilesDiff,
                       FramesResult, PatchOutput, PlanResult, ProgramOutput, Result, SolveResult,
                       TaughtPoints)
-from .review.patch import PatchResult
+from .review.result import PatchResult
 
 PathLike = Union[str, "os.PathLike[str]"]
 Paths = Union[PathLike, Sequence[PathLike]]

@@ -12,7 +12,7 @@ from ..files import atomic_write, write_target
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
     from ..parsing.document import Document
-    from .patch import PatchResult
+    from .result import PatchResult
 
 
 def _same_on_disk(path: str, doc: Document) -> bool:

@@ -16,7 +16,7 @@ TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are 
 if TYPE_CHECKING:
     from ..geometry.frames import Frame
     from ..parsing.model import ControllerFile
-    from .patch import PatchResult
+    from .result import PatchResult
 
 
 def _reread_declaration(result: PatchResult) -> tuple[Frame, ControllerFile] | None:
