@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "src"), str(ROOT / "tests")]   # this checkout's ucsio
 
 from test_quat_writer import MAX_ANGLE_DEG, TINY, orientations, patch_everywhere  # noqa: E402
-from ucsio.review.patch import QUAT_NORM_MAX  # noqa: E402
+from ucsio.vendors.abb.write import QUAT_NORM_MAX  # noqa: E402
 
 
 def main() -> int:

@@ -884,8 +884,8 @@ def test_patch_dir_parses_each_file_once(tmp_path, monkeypatch):
 
 def test_patch_dir_combined_copy_is_verified(tmp_path, monkeypatch):
     """patch_frame no longer parses each frame's copy: the combined copy's
-    read-back (patch.reads_back, through patch.verify) still guards the write."""
-    import ucsio.review.patch as patcher
+    read-back (verify.reads_back, through verify.verify) still guards the write."""
+    import ucsio.review.verify as patcher
 
     _two_frames_one_file(tmp_path)
     monkeypatch.setattr(patcher, "reads_back", lambda frame, pose: False)
@@ -897,7 +897,7 @@ def test_patch_dir_combined_copy_is_verified(tmp_path, monkeypatch):
 def test_patch_dir_refuses_a_source_changed_during_the_run(tmp_path, monkeypatch):
     """The copy holds the patched bytes of the source as it was read: if the
     source changed on disk since, the copy is not written (patch error)."""
-    import ucsio.review.patch as patcher
+    import ucsio.files as patcher
 
     _two_frames_one_file(tmp_path)
     src = tmp_path / "cell.mod"

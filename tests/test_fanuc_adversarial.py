@@ -371,7 +371,7 @@ def test_a_register_in_use_in_another_group_is_in_use(tmp_path):
     comment in group 1 is in use for a group-2 program too, and the
     register --posreg picks is unused in every group."""
     from fanuc_cell import registers
-    from ucsio.review.program import program
+    from ucsio.vendors.fanuc.program import program
     posreg = tmp_path / "posreg.va"
     posreg.write_text(registers([(1, 5, "", (1, 2, 3, 0, 0, 0)), (1, 20, "PERCH", None),
                                  (2, 19, "", {"J1": 1.0}), (1, 18, "", None)], groups=2, n=20),
@@ -390,7 +390,7 @@ def test_a_register_in_use_in_another_group_is_in_use(tmp_path):
 
 def test_the_corpus_posreg_gives_group_2_a_register_free_in_group_1(tmp_path):
     from conftest import corpus_file
-    from ucsio.review.program import program
+    from ucsio.vendors.fanuc.program import program
     from ucsio.vendors.fanuc.va import position_registers
     posreg = corpus_file("fanuc", "UB10200_RBT01__posreg.va")
     regs = position_registers(Document.read(str(posreg)))
@@ -405,7 +405,7 @@ def test_the_corpus_posreg_gives_group_2_a_register_free_in_group_1(tmp_path):
 @pytest.mark.parametrize("frame, group", [("UF3@0", None), ("UF3", 0), ("UT1@0", 0),
                                           ("UF3", -1), ("UF3@9", None)])
 def test_a_group_outside_1_to_8_is_refused_not_taken_as_group_1(frame, group):
-    from ucsio.review.program import parse_frame
+    from ucsio.vendors.fanuc.program import parse_frame
     with pytest.raises(UcsioError) as err:
         parse_frame(frame, group)
     assert "group 1...8" in err.value.message
@@ -430,7 +430,7 @@ def test_ucsio_program_with_group_0_writes_nothing(tmp_path):
                  st.one_of(st.floats(-180, 180), st.sampled_from([180.0, -180.0, 179.9995]))),
        st.sampled_from(["UF1", "UF9@2", "UF999", "UF2@8"]), st.integers(1, 9999))
 def test_a_new_program_at_the_extremes_reads_back(values, frame, pr):
-    from ucsio.review.program import program
+    from ucsio.vendors.fanuc.program import program
     made = program(Pose.from_wpr(*values), frame, pr=pr, comment="FIX 1")
     cf = parse(Document(made.data, "SET.LS"), full=True)
     (f,) = cf.frames

@@ -25,8 +25,8 @@ from ucsio.geometry import rotations as rot
 from ucsio.geometry.frames import Pose
 from ucsio.parsing.controller import load, parse
 from ucsio.parsing.document import Document
-from ucsio.review.patch import fanuc_edit, fanuc_number, tp_literal
-from ucsio.review.program import make_program, program
+from ucsio.vendors.fanuc.program import make_program, program
+from ucsio.vendors.fanuc.write import fanuc_edit, fanuc_number, tp_literal
 
 SRC = str(ROOT / "src")
 FANUC = FIXTURES / "fanuc"

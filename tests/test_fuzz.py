@@ -204,7 +204,7 @@ def test_fuzz_findings_stay_fixed(path):
 def test_the_oracle_catches_a_damaging_patch(monkeypatch):
     """The oracle is not vacuous: a patcher that eats the comment between a
     sign and its digits (issue 12 point 0) is a finding."""
-    import ucsio.review.patch as patch_mod
+    import ucsio.vendors.common.write as patch_mod
     from ucsio.parsing.document import Edit, Span
 
     def old_behaviour(text, n, new):

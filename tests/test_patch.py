@@ -19,7 +19,10 @@ from ucsio.parsing.controller import load, parse
 from ucsio.parsing.document import Document
 from ucsio.errors import UcsioError
 from ucsio.geometry.frames import Pose
-from ucsio.review.patch import (QUAT_NORM_MAX, edits_for, format_number, patch_frame, plan, save)
+from ucsio.review.patch import edits_for, patch_frame, plan
+from ucsio.review.save import save
+from ucsio.vendors.abb.write import QUAT_NORM_MAX
+from ucsio.vendors.common.write import format_number
 
 PATCH = FIXTURES / "patch"
 CELL = PATCH / "cell.mod"
@@ -556,7 +559,7 @@ from hypothesis import strategies as st  # noqa: E402
                                 st.sampled_from(["", "1", "x\n", "\n", "-0.5", "b"])),
                       min_size=1, max_size=3))
 def test_patch_diff_from_the_changed_window_equals_the_whole_file_diff(lines, eol, final, edits):
-    from ucsio.review.patch import unified_diff
+    from ucsio.review.unified import unified_diff
 
     text = eol.join(lines) + (eol if final and lines else "")
     new = text
@@ -632,7 +635,7 @@ def test_a_patch_s_hunk_is_the_one_difflib_writes(a, b, n, shift):
     """The hunk written without difflib (a patch's rewritten lines, none of
     which the other side holds) is byte for byte difflib's, header included;
     where lines could be matched, difflib writes it."""
-    from ucsio.review.patch import _difflib_lines, common_ends, unified_lines
+    from ucsio.review.unified import _difflib_lines, common_ends, unified_lines
 
     lo, hi = common_ends(a, b)
     want = list(_difflib_lines(a, b, lo, hi, "a/x", "b/x", n, shift))
@@ -643,7 +646,7 @@ def test_a_patch_s_hunk_is_the_one_difflib_writes(a, b, n, shift):
                                   (["c", "old"], ["c"]), ([], ["new"]), (["x"], ["y"]),
                                   (["c", "a", "c"], ["c", "b", "c"])])
 def test_a_patch_s_usual_hunk_is_written_without_difflib(a, b):
-    from ucsio.review.patch import _difflib_lines, _one_hunk, common_ends
+    from ucsio.review.unified import _difflib_lines, _one_hunk, common_ends
 
     lo, hi = common_ends(a, b)
     got = _one_hunk(a, b, lo, hi, "a/x", "b/x", 1, 7)

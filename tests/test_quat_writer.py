@@ -20,7 +20,8 @@ from ucsio.geometry import rotations as rot
 from ucsio.parsing.controller import load, parse
 from ucsio.parsing.document import Document
 from ucsio.geometry.frames import Pose
-from ucsio.review.patch import QUAT_NORM_MAX, _rotation_gap, patch_frame, quat_to_write
+from ucsio.review.patch import patch_frame
+from ucsio.vendors.abb.write import QUAT_NORM_MAX, quat_to_write, rotation_gap as _rotation_gap
 
 STEP = 1e-6
 MAX_ANGLE_DEG = 1.2e-4          # what 6 decimals allow: |dq| <= 4 x 5e-7 -> 2e-6 rad

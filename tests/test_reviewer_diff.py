@@ -23,8 +23,9 @@ from ucsio.geometry.frames import Pose
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
 from ucsio.review.diff import frame_delta
-from ucsio.review.patch import (READBACK_ANGLE_DEG, READBACK_FANUC_ANGLE_DEG, patch_frame,
-                                same_rotation_tolerance)
+from ucsio.review.patch import patch_frame, same_rotation_tolerance
+from ucsio.vendors.common.write import READBACK_ANGLE_DEG
+from ucsio.vendors.fanuc.write import READBACK_FANUC_ANGLE_DEG
 
 KUKA = FIXTURES / "patch" / "refs" / "$config.dat"
 FANUC = FIXTURES / "fanuc" / "program_patch.ls"

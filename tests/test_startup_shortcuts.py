@@ -21,7 +21,7 @@ from conftest import ROOT
 from ucsio.errors import UcsioError
 from ucsio.method import solution
 from ucsio.parsing import regex
-from ucsio.review.patch import f32
+from ucsio.vendors.common.write import f32
 
 
 def test_a_bad_solution_file_names_its_line_and_column(tmp_path):

@@ -42,7 +42,7 @@ from .parsing.model import ControllerFile
 from .results import (BackupsDiff, BatchOutput, CheckResult, DemoResult, DiffResult, FilesDiff,
                       FramesResult, PatchOutput, PlanResult, ProgramOutput, Result, SolveResult,
                       TaughtPoints)
-from .review.patch import PatchResult
+from .review.result import PatchResult
 
 PathLike = Union[str, "os.PathLike[str]"]
 Paths = Union[PathLike, Sequence[PathLike]]
@@ -307,7 +307,7 @@ def save(result: PatchOutput | PatchResult, path: PathLike | None = None,
     or to ``path``; ``backup`` keeps FILE.bak (never overwriting one).
     Refused if the source changed on disk since it was read. Returns the
     path written; a ``patch`` result's ``written``/``backup`` keys say it."""
-    from .review.patch import save as _save
+    from .review.save import save as _save
     planned = result.planned if isinstance(result, PatchOutput) else result
     written = _save(planned, path, backup=backup)
     if isinstance(result, PatchOutput):
@@ -329,7 +329,7 @@ def program(solution: Any, frame: str, *, group: int | None = None, pr: int | No
     ``output`` it is also written there (atomically; its file name is the
     program's name)."""
     from .commands import program as command
-    from .review.program import save as _save
+    from .vendors.fanuc.program import save as _save
     if isinstance(solution, (str, os.PathLike)):
         data: Any = os.fspath(solution)
     elif isinstance(solution, dict):

@@ -583,7 +583,7 @@ class PatchInfo(Result):
 class PatchOutput(Result):
     """``ucsio patch --json``: ``patch``. Not keys: ``diff``, ``new_bytes``,
     ``changed``, ``warnings`` of the planned patch, and ``planned`` itself
-    (``review.patch.PatchResult``), which ``api.save`` writes."""
+    (``review.result.PatchResult``), which ``api.save`` writes."""
     schema_version: int
     patch: PatchInfo
 

@@ -125,7 +125,7 @@ def solved_tcp_for(cf, name: str, oframe: bool, solution, path=None, force: bool
 
 def plan_patch(cf, frame: str, pose, *, measured: bool = True, solution=None, path=None,
                force: bool = False, oframe: bool = False, check_siblings: bool = True):
-    """The patch to write (``review.patch.PatchResult``; nothing written), for
+    """The patch to write (``review.result.PatchResult``; nothing written), for
     ``run`` and ``ucsio.api.patch``: ``pose`` into ``frame``, or, for a
     robot-held tool and a measured ``solution`` (its JSON data) whose TCP was
     solved, that TCP's x, y, z."""
@@ -147,7 +147,7 @@ def run(args) -> int:
     from ..parsing.controller import load
     from ..errors import UsageError
     from ..output import paint_diff
-    from ..review.patch import save
+    from ..review.save import save
 
     if args.backup and not args.in_place:
         raise UsageError("ucsio patch: --backup goes with --in-place")

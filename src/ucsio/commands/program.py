@@ -54,12 +54,12 @@ def add_arguments(p) -> None:
 
 def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None,
          wpr=None, output=None):
-    """The program (``review.program.ProgramResult``; nothing written), for
+    """The program (``vendors.fanuc.program.ProgramResult``; nothing written), for
     ``run`` and ``ucsio.api.program``. ``solution``: a SOLUTION.json's path
     (- standard input) or its data (a dict); ``wpr``: "W,P,R" or three
     numbers; ``output``: where it will go (it names the program)."""
     from ..method.solution import pose_from_json, read_json, solved_tcp
-    from ..review.program import program
+    from ..vendors.fanuc.program import program
     from .patch import parse_values
     path = None if isinstance(solution, dict) else str(solution)
     data = solution if path is None else read_json(path)
@@ -77,7 +77,7 @@ def document(result) -> dict:
 
 def run(args) -> int:
     from ..errors import UsageError
-    from ..review.program import save
+    from ..vendors.fanuc.program import save
 
     if args.output == "-" and args.json:
         raise UsageError("ucsio program: -o - puts the program on stdout; it does not go "

@@ -71,7 +71,8 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     from ..review.diff import DEFAULT_TOLERANCE
     from ..readers.measurement import read_measurement
     from ..geometry.frames import tool_tcp
-    from ..review.patch import patch_frame, save
+    from ..review.patch import patch_frame
+    from ..review.save import save
     from ..review.compare import diff_frame
     from ..method.solve import solve
 
@@ -101,7 +102,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
         if sol.accepted:
             written = save(result, folder / "patched" / Path(cell.controller).name)
             if prog is not None:
-                from ..review.program import save as save_program
+                from ..vendors.fanuc.program import save as save_program
                 save_program(prog, str(folder / PROGRAM_FILE))     # sets prog.written
     label = f"a/{cell.controller}"
     extra = {} if prog is None else {"program": {
@@ -148,7 +149,7 @@ PROGRAM_FILE = "SET_UF1.LS"     # the FANUC cell's program (its name is the prog
 def _program(cell: Cell, root: Path, sim, sol):
     """The TP program that sets the FANUC cell's frame, its register one that
     the backup's POSREG.VA shows unused, the frame's comment kept."""
-    from ..review.program import program
+    from ..vendors.fanuc.program import program
 
     return program(sol.pose, cell.frame, comment=sim.label,
                    posreg=str(root / cell.posreg) if cell.posreg else None, out=PROGRAM_FILE)

@@ -661,7 +661,7 @@ def _measured_in_parent(cf, frame, fit: Pose) -> Pose:
     """The fit is the UCS in robot world; express it where the frame is given
     (an ABB object frame: in its user frame). A frame relative to something
     else (a flange, a machine) cannot be compared with a measured UCS."""
-    from ..review.patch import measured_in_parent, reference_problem
+    from ..review.reference import measured_in_parent, reference_problem
 
     why = reference_problem(cf, frame)
     if why and frame.reference != "unknown":  # pose data, plain FRAME variables: as given
@@ -679,7 +679,7 @@ def _entry_uncertainty(r: EntryResult, meas, cf, frame, n: int, sigma_laser: flo
     every sample pose, and with them std and ci95, are in the same
     coordinates as the frame; the noise is isotropic, so its model is the
     same in either axes, and the angle (a magnitude) does not change."""
-    from ..review.patch import measured_in_parent
+    from ..review.reference import measured_in_parent
     from ..method.solve import residual_sigma, solution_uncertainty, uncertainty
 
     sol = r.solution
@@ -705,8 +705,8 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
     """Solve and diff every entry; one entry's failure never stops the run."""
     import time
 
+    from .. import vendors
     from ..review.names import find_frame
-    from ..review.patch import same_rotation_tolerance
     from ..review.unset import is_set, warning as unset_warning
 
     t0 = time.perf_counter()
@@ -803,7 +803,7 @@ def run_batch(manifest: Manifest, *, uncertainty: int = 0,
             continue
         if sol.accepted:
             r.delta = frame_delta(r.simulated, r.measured, r.entry.tolerance,
-                                  same_rotation_tolerance(frame.vendor))
+                                  vendors.get(frame.vendor).same_rotation_tolerance)
     if progress:
         progress("solve", total, total)
     t3 = time.perf_counter()
@@ -875,13 +875,15 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
     ``patch_frame``'s refusals (the sibling modules of a shared-PERS check
     read through ``cache``, so each file is parsed once per run); the copy
     with all of a file's changes applied is parsed once and every frame must
-    read back from it (``ucsio.review.patch.verify``). A refusal is the
+    read back from it (``ucsio.review.verify.verify``). A refusal is the
     entry's ``patch_error``, and that file's copy is not written (the file's
     other entries get a ``patch_error`` naming the refused one); two entries
     writing one frame or tool are refused too. The copy is not written
     either when the source file changed on disk since it was read (its bytes
     are what was patched): every entry of that file gets the
     ``patch_error``."""
+    from .. import vendors
+    from ..files import atomic_write
     from ..review import patch as patcher
     from ..review.names import find_frame
 
@@ -952,7 +954,7 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                         raise UcsioError("the file changed on disk since it was read; patched "
                                          "copy not written (run the batch again)", file=path)
 
-                patcher.atomic_write(target, new, mode, check=unchanged)
+                atomic_write(target, new, mode, check=unchanged)
         except UcsioError as exc:
             problem = str(exc)
         except OSError as exc:
@@ -963,10 +965,12 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
                     r.patched = str(target)
                     # a listing's copy is for review (FANUC: the controller does
                     # not load .va files): a program sets the frame instead
-                    r.listing = any(patcher.LISTING_WARNING in pr.warnings for pr in planned
+                    review = [(pr, vendors.get(pr.frame.vendor).review_copy_warning)
+                              for pr in planned]
+                    r.listing = any(w is not None and w in pr.warnings for pr, w in review
                                     if pr.frame.name.casefold() == name.casefold())
-                    r.warnings += [w for pr in planned for w in pr.warnings
-                                   if w == patcher.LISTING_WARNING and w not in r.warnings]
+                    r.warnings += [w for pr, copy in review for w in pr.warnings
+                                   if w == copy and w not in r.warnings]
                 else:
                     r.tool_patched = str(target)
                 continue
@@ -984,15 +988,15 @@ def write_patches(results: list[EntryResult], frames: dict, cache: _Cache, patch
 def write_programs(results: list[EntryResult], frames: dict) -> None:
     """Beside each listing's reviewed copy, the program that sets its frame,
     as ``ucsio program`` writes it, where the frame's vendor writes one
-    (``review.program.program_writer``); its register from the entry's
+    (its vendor's ``program_writer``); its register from the entry's
     ``pr`` or ``posreg``, else the posreg.va beside the listing. A failure
     is the entry's ``program_error``; the listing's copy stays for review."""
-    from ..review.patch import LISTING_WARNING
-    from ..review.program import program_writer
+    from .. import vendors
 
     for k, r in enumerate(results):
         frame = frames[k][1] if k in frames else None
-        writer = program_writer(frame.vendor) if frame is not None else None
+        vendor = vendors.get(frame.vendor) if frame is not None else None
+        writer = vendor.program_writer if vendor is not None else None
         if not (r.listing and writer):
             continue
         try:
@@ -1005,7 +1009,7 @@ def write_programs(results: list[EntryResult], frames: dict) -> None:
             r.program_error = f"program not written: {exc.strerror or exc}"
             continue
         r.program = {k: v for k, v in made.as_dict().items() if k != "text"}
-        r.warnings = [w for w in r.warnings if w != LISTING_WARNING] + [
+        r.warnings = [w for w in r.warnings if w != vendor.review_copy_warning] + [
             f"the controller does not load .va files: the patched copy of "
             f"{os.path.basename(frame.file)} is for review; {os.path.basename(made.written)} "
             f"beside it sets {frame.name} through PR[{made.pr}] (load it, read it, run it once "
@@ -1014,11 +1018,11 @@ def write_programs(results: list[EntryResult], frames: dict) -> None:
 
 def _verify_combined(cf, new: bytes, planned) -> None:
     """Parse the bytes with all of a file's patches applied, once, and check
-    every frame reads back from them (``ucsio.review.patch.verify`` on that parse:
+    every frame reads back from them (``ucsio.review.verify.verify`` on that parse:
     ``patch_frame`` was told not to parse each frame's copy alone)."""
-    from ..review import patch as patcher
     from ..parsing.controller import parse
     from ..parsing.document import Document
+    from ..review.verify import verify
 
     try:
         again = parse(Document(new, cf.path))
@@ -1026,7 +1030,7 @@ def _verify_combined(cf, new: bytes, planned) -> None:
         raise UcsioError(f"internal error: the patched copy does not parse back: {exc}",
                          file=cf.path) from None
     for pr in planned:
-        patcher.verify(pr, parsed=again)
+        verify(pr, parsed=again)
 
 
 # ---------------------------------------------------------------- summary

@@ -24,8 +24,10 @@ from ..parsing.model import ControllerFile
 from .diff import DEFAULT_TOLERANCE, frame_delta
 from .names import find_frame
 from .unset import is_set, warning as unset_warning
-from .patch import (_close32, common_ends, measured_in_parent, object_frame_basis, poses_equal,
-                    reference_problem, resolve_name, same_rotation_tolerance, unified_lines)
+from ..vendors.common.write import close32 as _close32, poses_equal
+from .patch import resolve_name, same_rotation_tolerance
+from .reference import measured_in_parent, object_frame_basis, reference_problem
+from .unified import common_ends, unified_lines
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:

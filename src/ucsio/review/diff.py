@@ -16,7 +16,7 @@ from ..geometry.rotations import abc_in_range, nearest_abc, quat_angle, wrap180
 
 DEFAULT_TOLERANCE = defaults.TOLERANCE
 GROUP_BOUNDS = (10.0, 25.0, 50.0, 100.0)   # mm; group k is below GROUP_BOUNDS[k-1]
-# deg: a quarter of KUKA's written step (review.patch.same_rotation_tolerance)
+# deg: a quarter of KUKA's written step (a vendor's same_rotation_tolerance)
 SAME_ROTATION = 2.5e-5
 
 

@@ -76,7 +76,7 @@ def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose]
     object frame); a measured user frame replaces the uframe, a measured
     object frame (given in its user frame, patch.measured_in_parent) the
     oframe. KUKA: the base alone."""
-    from ..review.patch import measured_in_parent
+    from ..review.reference import measured_in_parent
 
     mine = measured_in_parent(cf, frame, measured)
     if frame.vendor != "abb":

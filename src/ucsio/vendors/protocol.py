@@ -9,8 +9,10 @@ from __future__ import annotations
 from typing import Any, Callable, Protocol, runtime_checkable
 
 from ..geometry.angles import AngleColumns, MeasurementColumns
-from ..parsing.document import Document
+from ..geometry.frames import Frame, Pose
+from ..parsing.document import Document, Edit
 from ..parsing.model import ControllerFile
+from .common.write import Change
 
 
 @runtime_checkable
@@ -39,4 +41,45 @@ class Vendor(Protocol):
     # vendor never imports the dispatch above it. -> vendors.common.robot.RobotPoses
     robot_suffixes: tuple[str, ...]
     robot_positions: Callable[..., Any] | None
+
+    # -- writing frames and programs (patch, program): ``review.patch`` plans
+    # an edit with these, ``review.verify`` reads it back, ``review.save``
+    # writes it; the shared pieces are ``vendors.common.write``.
+    native_keys: tuple[str, ...]        # the components a frame is written with
+    same_rotation_tolerance: float      # deg: a quarter of the written angle step
+    readback_angle: float               # deg: the rotation a written frame reads back within
+
+    def plan_changes(self, frame: Frame, pose: Pose) -> list[Change]:
+        """The number changes that write ``pose`` into ``frame`` natively."""
+
+    def translation_changes(self, frame: Frame, pose: Pose) -> list[Change]:
+        """Those of x, y, z only (a solved TCP)."""
+
+    def edits_for(self, frame: Frame, changes: list[Change]) -> list[Edit]:
+        """The text edits that make ``frame`` read ``changes``."""
+
+    def where(self, frame: Frame) -> dict:
+        """file, line (and col) a refusal of ``frame`` names."""
+
+    def read_again(self, cf: ControllerFile, frame: Frame) -> Frame:
+        """``frame`` in the patched text ``cf``."""
+
+    def as_module(self, text: str) -> str:
+        """One declaration's text as a file the vendor's grammar reads."""
+
+    # ``declaration_end(text, last)``: the end of a declaration whose last number ends
+    # at ``last``; None: a declaration is not read back alone (the whole file)
+    declaration_end: Callable[[str, int], int] | None
+    # (cf, name) -> every assignment of the frame a program sets it by; None: one declaration
+    assignments: Callable[[ControllerFile, str], list[Frame]] | None
+    # (cf, frame, where, warnings): refuses a file the vendor does not write back
+    check_patchable: Callable[[ControllerFile, Frame, dict, list[str]], None] | None
+    # (frame, force, warnings, where, load): other modules that declare it too
+    check_siblings: Callable[..., None] | None
+    # (frame read back, changes, path): what the written numbers must satisfy besides the pose
+    check_readback: Callable[[Frame, list[Change], str], None] | None
+    # (frame, out or None) -> why the file is only patched as a reviewed copy
+    in_place_refusal: Callable[[Frame, str | None], str | None] | None
+    review_copy_warning: str | None     # what a patched reviewed copy warns
+    # (pose, frame, folder, pr=, posreg=) -> a program that sets a listing's frame
     program_writer: Callable[..., Any] | None

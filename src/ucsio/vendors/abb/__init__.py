@@ -40,6 +40,52 @@ class Abb:
         return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
+    native_keys = ("x", "y", "z", "q1", "q2", "q3", "q4")
+    # deg: how far a rotation's angles may move to stay nearest the old ones
+    # (KUKA's, a quarter of 0.0001 deg: diff compares ABB frames in angles too)
+    same_rotation_tolerance = 2.5e-5
+    readback_angle = 5e-4       # deg: a 6-decimal quaternion reads back within this
+
+    def plan_changes(self, frame, pose):
+        from .write import plan
+        return plan(frame, pose)
+
+    def translation_changes(self, frame, pose):
+        from ..common.write import translation_changes
+        return translation_changes(frame, pose)
+
+    def edits_for(self, frame, changes):
+        from ..common.write import edits_for
+        return edits_for(frame, changes)
+
+    def where(self, frame) -> dict:
+        from ..common.write import where
+        return where(frame)
+
+    def read_again(self, cf, frame):
+        from ..common.write import read_again
+        return read_again(cf, frame)
+
+    def declaration_end(self, text: str, last: int) -> int:
+        from .write import declaration_end
+        return declaration_end(text, last)
+
+    def as_module(self, text: str) -> str:
+        from .write import as_module
+        return as_module(text)
+
+    def check_siblings(self, frame, force, warnings, where, load) -> None:
+        from .write import check_siblings
+        check_siblings(frame, force, warnings, where, load)
+
+    def check_readback(self, again, changes, path) -> None:
+        from .write import check_readback
+        check_readback(again, changes, path)
+
+    assignments = None          # a declaration sets a frame once
+    check_patchable = None      # every module is written back
+    in_place_refusal = None
+    review_copy_warning = None
     program_writer = None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------

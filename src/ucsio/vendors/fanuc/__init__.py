@@ -53,7 +53,59 @@ class Fanuc:
         return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
-    program_writer = None
+    native_keys = ("x", "y", "z", "w", "p", "r")
+    same_rotation_tolerance = 2.5e-4    # deg: a quarter of the written step (0.001 deg)
+    readback_angle = 1e-3               # deg: W, P, R to 0.001 deg read back within this
+    # a program's PR lines stand above the frame's: verified by reading the whole file
+    declaration_end = None
+    check_siblings = None
+    check_readback = None
+
+    def plan_changes(self, frame, pose):
+        from .write import plan
+        return plan(frame, pose)
+
+    def translation_changes(self, frame, pose):
+        from .write import translation
+        return translation(frame, pose)
+
+    def edits_for(self, frame, changes):
+        from .write import edits_for
+        return edits_for(frame, changes)
+
+    def where(self, frame) -> dict:
+        from .write import where
+        return where(frame)
+
+    def read_again(self, cf, frame):
+        from .write import read_again
+        return read_again(cf, frame)
+
+    def as_module(self, text: str) -> str:
+        return text
+
+    def assignments(self, cf, name: str):
+        from .write import assignments
+        return assignments(cf, name)
+
+    def check_patchable(self, cf, frame, where: dict, warnings: list) -> None:
+        from .write import check_patchable
+        check_patchable(cf, frame, where, warnings)
+
+    def in_place_refusal(self, frame, out):
+        from .write import in_place_refusal
+        return in_place_refusal(frame, out)
+
+    @property
+    def review_copy_warning(self) -> str:
+        """What a patch of a listing warns: its copy is for review."""
+        from .write import LISTING_WARNING
+        return LISTING_WARNING
+
+    def program_writer(self, pose, frame, folder: str, *, pr=None, posreg=None):
+        """The TP program that sets a listing's frame, beside its reviewed copy."""
+        from .program import write_beside
+        return write_beside(pose, frame, folder, pr=pr, posreg=posreg)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
 

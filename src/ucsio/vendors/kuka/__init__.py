@@ -37,6 +37,43 @@ class Kuka:
         return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
+    native_keys = ("x", "y", "z", "a", "b", "c")
+    same_rotation_tolerance = 2.5e-5    # deg: a quarter of the written step (0.0001 deg)
+    readback_angle = 5e-4               # deg: A, B, C to 0.0001 deg read back within this
+
+    def plan_changes(self, frame, pose):
+        from .write import plan
+        return plan(frame, pose)
+
+    def translation_changes(self, frame, pose):
+        from .write import translation
+        return translation(frame, pose)
+
+    def edits_for(self, frame, changes):
+        from ..common.write import edits_for
+        return edits_for(frame, changes)
+
+    def where(self, frame) -> dict:
+        from ..common.write import where
+        return where(frame)
+
+    def read_again(self, cf, frame):
+        from ..common.write import read_again
+        return read_again(cf, frame)
+
+    def declaration_end(self, text: str, last: int) -> int:
+        from .write import declaration_end
+        return declaration_end(text, last)
+
+    def as_module(self, text: str) -> str:
+        return text
+
+    assignments = None
+    check_patchable = None
+    check_siblings = None
+    check_readback = None
+    in_place_refusal = None
+    review_copy_warning = None
     program_writer = None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------

@@ -14,10 +14,10 @@ controller writes its ``.LS`` files (CRLF, ``/PROG`` ``/ATTR`` ``/MN``
        9:  PR[90,6]=(-90.000)    ;
       10:  UFRAME[3:FIXTURE]=PR[90] ;
 
-Values to 0.001 mm and 0.001 deg (``review.patch.fanuc_number``: negatives
-in parentheses, no leading zero; W, P, R by ``review.patch.wpr_to_write``,
+Values to 0.001 mm and 0.001 deg (``write.fanuc_number``: negatives
+in parentheses, no leading zero; W, P, R by ``write.wpr_to_write``,
 so the three angles' rounding errors do not add up). The text is parsed
-back through ucsio's own TP grammar (``parsing.tp``) before anything is
+back through ucsio's own TP grammar (``tp``) before anything is
 written: the frame must read back as the solution within 0.001 mm and
 0.001 deg. A group other than 1 is the program's DEFAULT_GROUP, so PR[N]
 and the frame are that group's.
@@ -26,12 +26,12 @@ from __future__ import annotations
 
 import os
 
-from ..errors import UcsioError
-from ..geometry.frames import Pose
-from ..parsing.document import Document
-from ..values import Value
-from .patch import (cannot_hold, fanuc_number, reads_back, refuse_flagged_values, tp_literal,
-                    wpr_to_write)
+from ...errors import UcsioError
+from ...geometry.frames import Pose
+from ...parsing.document import Document
+from ...values import Value
+from ..common.readback import cannot_hold, reads_back, refuse_flagged_values
+from .write import fanuc_number, tp_literal, wpr_to_write
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -80,7 +80,7 @@ def parse_frame(name: str, group: int | None) -> tuple[str, int, int]:
     m = re.fullmatch(r"\s*(U[FT])\s*([0-9]+)\s*(?:@\s*([0-9]+))?\s*", name, re.I)
     if m is None:
         raise UcsioError(f"--frame {name!r}: expected UFk or UTk (UF3, UT2; UF3@2 for group 2)")
-    from ..parsing.document import shown_digits, small_int
+    from ...parsing.document import shown_digits, small_int
     kind, number = FRAME_TYPES[m.group(1).upper()], small_int(m.group(2))
     at = small_int(m.group(3)) if m.group(3) else None
     if number is None or (m.group(3) and at is None):
@@ -138,10 +138,10 @@ def unused_register(posreg: str, group: int) -> int:
 
 
 def _registers(posreg: str) -> dict:
-    from ..vendors.fanuc.va import position_registers
+    from .va import position_registers
     doc = Document.read(posreg) if posreg != "-" else None
     if doc is None:
-        from ..files import read_bytes
+        from ...files import read_bytes
         doc = Document(read_bytes("-", "posreg.va"), "<stdin>")
     regs = position_registers(doc)
     if not regs:
@@ -205,7 +205,7 @@ def program(pose: Pose, frame: str, *, group: int | None = None, pr: int | None 
     TCP, flange coordinates) with the tool's ``wpr`` (default 0, 0, 0, the
     faceplate's axes). ``pr``: the register, else an unused one of
     ``posreg``. ``out``: where it will be written (its name is the
-    program's). Read back through parsing.tp before it is returned."""
+    program's). Read back through the TP reader (``tp``) before it is returned."""
     kind, number, g = parse_frame(frame, group)
     comment = check_comment(comment)
     warnings: list[str] = []
@@ -245,7 +245,7 @@ def program(pose: Pose, frame: str, *, group: int | None = None, pr: int | None 
 def _read_back(text: str, name: str, short: str, pose: Pose) -> dict[str, float]:
     """The frame as ucsio's TP grammar reads the program: it must give
     ``pose`` within 0.001 mm and 0.001 deg (else an internal error)."""
-    from ..vendors.fanuc import tp
+    from . import tp
     try:
         cf = tp.parse(Document(text.encode("ascii"), f"{name}.LS"), full=True)
     except UcsioError as exc:      # the reader refuses a value (a REAL out of range)
@@ -263,7 +263,7 @@ def _read_back(text: str, name: str, short: str, pose: Pose) -> dict[str, float]
 
 def save(result: ProgramResult, path: str) -> str:
     """Write the program atomically (``files.atomic_write``)."""
-    from ..files import atomic_write, write_target
+    from ...files import atomic_write, write_target
     target = write_target(path)
     written, _ = atomic_write(target, result.data)
     result.written = written
@@ -302,14 +302,3 @@ def write_beside(pose: Pose, frame, folder: str, *, pr: int | None = None,
     save(result, os.path.join(folder, f"{result.name}.LS"))
     return result
 
-
-#: The vendors whose frames reach the controller through a program ucsio
-#: writes, the listing's patched copy being for review only (FANUC: the
-#: controller does not load .va files): how each writes it beside the copy.
-PROGRAM_WRITERS = {"fanuc": write_beside}
-
-
-def program_writer(vendor: str | None):
-    """``write_beside`` for a vendor whose listings the controller does not
-    load, else None (its patched copy is the file the controller loads)."""
-    return PROGRAM_WRITERS.get(vendor or "")
