@@ -10,16 +10,21 @@ import os
 
 from .. import vendors
 from ..errors import UcsioError
-from ..vendors import lint_codes
 from .document import BOM, Document, looks_binary
 from .lalr import paused_gc
 from .model import ControllerFile
 
 
-# Every code check can report, with what it means (docs/controllers.md: "Lint
-# codes"): each vendor's table (vendors/<name>/lints.py), in the registry's order.
-# `check --ignore` accepts exactly these.
-LINT_CODES = lint_codes()
+# LINT_CODES: every code check can report, with what it means (docs/controllers.md:
+# "Lint codes"): each vendor's table (vendors/<name>/lints.py), in the registry's
+# order. `check --ignore` accepts exactly these. Built on first use (__getattr__):
+# reading one vendor's file imports nothing of the others, not even their tables.
+def __getattr__(name: str):
+    if name == "LINT_CODES":
+        codes = globals()["LINT_CODES"] = vendors.lint_codes()
+        return codes
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 # Findings about a whole file, not a lint: every output format of check names
 # them by these codes. They fail the check and cannot be --ignored.
