@@ -5,6 +5,7 @@ file imports its own vendor's package and no other."""
 from __future__ import annotations
 
 import ast
+import re
 import importlib
 import json
 import subprocess
@@ -70,8 +71,8 @@ def offenders_in(path: Path, root: Path = SRC.parent) -> list[str]:
             found = [n for n in map(_vendor_name, args) if n]
             what = "a call passing"
         if found:
-            out.append(f"{rel}:{node.lineno}: {what} {', '.join(map(repr, found))}")
-    return out
+            out.append((node.lineno, f"{rel}:{node.lineno}: {what} {', '.join(map(repr, found))}"))
+    return [text for _, text in sorted(out)]
 
 
 def _modules(*parts: str) -> list[Path]:
@@ -161,3 +162,71 @@ def test_reading_a_file_imports_no_other_vendor(path, mine):
     assert out["code"] == 0
     loaded = {m.split(".")[2] for m in out["vendors"]}
     assert mine in loaded and loaded <= {mine, "common"}, out["vendors"]
+
+
+# ------------------------------------------------------------- asked, not named
+
+KUKA_CONFIG = FIXTURES / "taught" / "kuka" / "KRC" / "R1" / "System" / "$config.dat"
+
+
+def run(*args) -> tuple[int, str, str]:
+    import contextlib
+    import io
+    from ucsio.cli import main
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.fixture
+def kuka_as(monkeypatch):
+    """KUKA's vendor object with some of its answers replaced: generic code
+    must follow the object, whatever the frame's vendor is called."""
+    kuka = type(vendors.get("kuka"))
+
+    def replace(**answers):
+        stand_in = type("StandIn", (kuka,), answers)()
+        monkeypatch.setitem(vendors._loaded, "kuka", stand_in)
+    return replace
+
+
+def _measured(tmp_path) -> Path:
+    sol = tmp_path / "solution.json"
+    sol.write_text(json.dumps({"frame": dict(x=1501.0, y=-249.0, z=600.5, a=30.5, b=-2.4, c=1.0),
+                               "accepted": True}))
+    return sol
+
+
+def test_a_vendor_without_a_reader_of_taught_points_says_so(tmp_path, kuka_as):
+    kuka_as(taught_points=None)
+    code, out, err = run("diff", KUKA_CONFIG, "--frame", "weld_fixture", "--measured",
+                         _measured(tmp_path), "--points")
+    assert code == 2 and out == ""
+    assert "KUKA has no reader of taught points yet" in err
+    assert re.search(r"\$config\.dat:\d+", err), err
+
+
+def test_a_frames_own_deltas_are_its_vendors(tmp_path, kuka_as):
+    args = ("diff", KUKA_CONFIG, "--frame", "weld_fixture", "--measured", _measured(tmp_path),
+            "--json")
+    plain = json.loads(run(*args)[1])
+    assert "dw" not in plain
+    kuka_as(native_deltas=(("dw", "dc"),))
+    d = json.loads(run(*args)[1])
+    assert d["dw"] == d["dc"] == plain["dc"]
+
+
+def test_which_frames_can_be_unset_is_the_vendors(kuka_as):
+    """TOOL_DATA[4] of a configuration is unset (zero, a blank name) and
+    BASE_DATA[4] set (zero, named "gripper"); a vendor that pre-fills
+    nothing has no unset frame, and names its controller gives count as none."""
+    from ucsio.parsing.controller import load
+    from ucsio.review.unset import is_set
+    cf = load(FIXTURES / "kuka" / "cell_config.dat")
+    blank, named = cf.frame("TOOL_DATA[4]"), cf.frame("BASE_DATA[4]")
+    assert (is_set(blank, cf), is_set(named, cf)) == (False, True)
+    kuka_as(prefilled=lambda self, frame, cf: False)
+    assert is_set(blank, cf)
+    kuka_as(default_label=lambda self, frame, label: label == "gripper")
+    assert not is_set(named, cf)

@@ -28,3 +28,30 @@ class Vendor(Protocol):
 
     # Capabilities: None where the vendor has none.
     program_writer: Callable[..., Any] | None
+
+    # -- taught points, unset frames, comparing frames (diff) ---------------------------
+    # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a
+    # frame, read from the files around it (diff --points, plan --at-taught)
+    taught_points: Callable[..., Any] | None
+
+    def taught_chain(self, cf: ControllerFile, frame: Any, measured: Any) -> tuple[list, list]:
+        """The poses a point taught in ``frame`` goes through to world,
+        simulated and measured (``measured``: the frame's measured pose in
+        its parent), innermost last."""
+
+    def taught_in_frame(self, cf: ControllerFile, frame: Any, found: Any) -> list:
+        """Each taught point's position in ``frame``'s own coordinates."""
+
+    def prefilled(self, frame: Any, cf: ControllerFile | None) -> bool:
+        """Whether the controller lists ``frame`` whether anyone taught it or
+        not (an entry of a table of defaults): only such a frame can be unset."""
+
+    def default_label(self, frame: Any, label: str) -> bool:
+        """Whether ``label`` is a name the controller gives a frame nobody named."""
+
+    # (own key, SPEC's key) pairs: a frame's deltas in the vendor's terms,
+    # added beside SPEC's da, db, dc (FANUC: dw = dc)
+    native_deltas: tuple[tuple[str, str], ...]
+    # whether the controller loads no file ucsio patches, so that a program
+    # sets a measured frame (FANUC: a TP program, not the .va listing)
+    frames_set_by_program: bool
