@@ -8,8 +8,10 @@ from __future__ import annotations
 
 from typing import Any, Callable, Protocol, runtime_checkable
 
+from ..geometry.frames import Frame, Pose
 from ..parsing.document import Document
 from ..parsing.model import ControllerFile
+from .common.taught import Found
 
 
 @runtime_checkable
@@ -34,19 +36,21 @@ class Vendor(Protocol):
     # frame, read from the files around it (diff --points, plan --at-taught)
     taught_points: Callable[..., Any] | None
 
-    def taught_chain(self, cf: ControllerFile, frame: Any, measured: Any) -> tuple[list, list]:
+    def taught_chain(self, cf: ControllerFile, frame: Frame,
+                     measured: Pose) -> tuple[list[Pose], list[Pose]]:
         """The poses a point taught in ``frame`` goes through to world,
         simulated and measured (``measured``: the frame's measured pose in
         its parent), innermost last."""
 
-    def taught_in_frame(self, cf: ControllerFile, frame: Any, found: Any) -> list:
+    def taught_in_frame(self, cf: ControllerFile, frame: Frame,
+                        found: Found) -> list[tuple[float, float, float]]:
         """Each taught point's position in ``frame``'s own coordinates."""
 
-    def prefilled(self, frame: Any, cf: ControllerFile | None) -> bool:
+    def prefilled(self, frame: Frame, cf: ControllerFile | None) -> bool:
         """Whether the controller lists ``frame`` whether anyone taught it or
         not (an entry of a table of defaults): only such a frame can be unset."""
 
-    def default_label(self, frame: Any, label: str) -> bool:
+    def default_label(self, frame: Frame, label: str) -> bool:
         """Whether ``label`` is a name the controller gives a frame nobody named."""
 
     # (own key, SPEC's key) pairs: a frame's deltas in the vendor's terms,
