@@ -76,10 +76,12 @@ def offenders_in(path: Path, root: Path = SRC.parent) -> list[str]:
 
 
 def _modules(*parts: str) -> list[Path]:
+    """The modules of src/ucsio at ``parts`` (folders and files; one that a
+    split has removed is skipped, its successors are in "everything else")."""
     out = []
     for part in parts:
         p = SRC / part
-        out += sorted(p.rglob("*.py")) if p.is_dir() else [p]
+        out += sorted(p.rglob("*.py")) if p.is_dir() else [p] if p.is_file() else []
     return out
 
 
