@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sys
 
-from .. import defaults
+from .. import defaults, vendors
 from ..output import emit_json, fmt, paint, paint_diff, table
 from .diff import delta_table
 
@@ -59,7 +59,7 @@ def print_cell(cell: dict) -> None:
     label = f" \"{cell['label']}\"" if cell.get("label") else ""
     rule = "=" * 78
     print(rule)
-    print(f"cell {cell['cell']} ({cell['vendor'].upper()}): {cell['story']}")
+    print(f"cell {cell['cell']} ({vendors.title(cell['vendor'])}): {cell['story']}")
     print(rule)
     print(f"controller   {cell['controller']}   frame {cell['frame']}{label}")
     tool = cell["tool"]

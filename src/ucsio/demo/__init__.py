@@ -22,13 +22,13 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from .. import vendors
 from ..errors import UcsioError
 
 
 @dataclass(frozen=True)
 class Cell:
     name: str
-    vendor: str
     controller: str      # path inside ucsio/demo/data
     frame: str
     measurement: str
@@ -40,20 +40,31 @@ class Cell:
     extra: tuple[str, ...] = ()  # other files of the backup (FANUC: POSREG.VA, a program)
     posreg: str | None = None    # FANUC: the listing program() picks an unused register from
 
+    @property
+    def vendor(self) -> str:
+        """The controller file's vendor, by its name (the registry's suffixes)."""
+        return vendors.by_suffix(self.controller)
+
+    @property
+    def set_by_program(self) -> bool:
+        """Whether the controller loads no file ucsio patches, so that a
+        program sets the measured frame (FANUC: a TP program)."""
+        return vendors.get(self.vendor).frames_set_by_program
+
 
 CELLS = (
-    Cell("R01", "kuka", "R01_kuka/$config.dat", "weld_fixture_A", "R01_kuka/base3_points.csv",
+    Cell("R01", "R01_kuka/$config.dat", "weld_fixture_A", "R01_kuka/base3_points.csv",
          "SMR_reflector",
          "KUKA KR 210 at a welding fixture: BASE_DATA[3] as simulated vs measured"),
-    Cell("R02", "abb", "R02_abb/CellR02.mod", "wobjTable", "R02_abb/table_points.csv",
+    Cell("R02", "R02_abb/CellR02.mod", "wobjTable", "R02_abb/table_points.csv",
          "tReflector",
          "ABB IRB 4600 at a press table: wobjTable's user frame as simulated vs measured"),
-    Cell("R03", "kuka", "R03_kuka/$config.dat", "jig_B", "R03_kuka/jig_points.txt",
+    Cell("R03", "R03_kuka/$config.dat", "jig_B", "R03_kuka/jig_points.txt",
          "SMR_adapter",
          "KUKA KR 120 at a fixing jig, from a SpatialAnalyzer export and the measurement "
          "program's MEASURE.dat: BASE_DATA[1] and the never-measured reflector adapter's TCP",
          robot="R03_kuka/MEASURE.dat"),
-    Cell("R04", "fanuc", "R04_fanuc/SYSFRAME.VA", "UF1", "R04_fanuc/pallet_points.txt", "UT2",
+    Cell("R04", "R04_fanuc/SYSFRAME.VA", "UF1", "R04_fanuc/pallet_points.txt", "UT2",
          "FANUC palletising cell, from the tracker's point table and the measurement program "
          "MEASURE.LS: UF1 'PALLET' as simulated vs measured, set by a generated TP program",
          robot="R04_fanuc/MEASURE.LS", tcp_solve=False,
@@ -93,7 +104,7 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
     if cell.robot is not None and cell.tcp_solve:
         result = _with_tcp(cf, result, cell.tool, sol.tcp)
-    prog = _program(cell, root, sim, sol) if cell.vendor == "fanuc" else None
+    prog = _program(cell, root, sim, sol) if cell.set_by_program else None
     written = folder = None
     if out is not None:
         folder = Path(out) / Path(cell.controller).parent.name
@@ -183,7 +194,7 @@ def replay_script(cell: Cell, label: str | None = None) -> str:
     ctl = Path(cell.controller).name
     meas = Path(cell.measurement).name
     q = _sh
-    if cell.vendor == "fanuc":
+    if cell.set_by_program:
         robot = Path(cell.robot or "").name
         posreg = Path(cell.posreg or "").name
         return "\n".join([

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import os
 
+from .. import vendors
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
 from ..parsing.controller import parse
@@ -54,7 +55,7 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
         d["label"] = frame.label
     d.update(frame_delta(frame.pose, measured_in_parent(cf, frame, measured), tolerance,
                          same_rotation_tolerance(frame.vendor)))
-    _fanuc_deltas(d)
+    _native_deltas(d)
     warnings = []
     why = reference_problem(cf, frame)
     if why:
@@ -76,11 +77,12 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
 _IGNORED_INFO = {"module", "w", "p", "r"}
 
 
-def _fanuc_deltas(d: dict) -> None:
-    """A FANUC frame's deltas in its own terms beside SPEC's: dw = dc,
-    dp = db, dr = da (a = r, b = p, c = w)."""
-    if d.get("vendor") == "fanuc" and "da" in d:
-        d["dw"], d["dp"], d["dr"] = d["dc"], d["db"], d["da"]
+def _native_deltas(d: dict) -> None:
+    """A frame's deltas in its vendor's own terms beside SPEC's (FANUC:
+    dw = dc, dp = db, dr = da: a = r, b = p, c = w)."""
+    if "da" in d:
+        for own, spec in vendors.get(d["vendor"]).native_deltas:
+            d[own] = d[spec]
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -162,7 +164,7 @@ def diff_files(old: ControllerFile | None, new: ControllerFile | None) -> dict[s
                           "group", "pass"):
                     item[k] = delta[k]
                 item["simulated"], item["measured"] = delta["simulated"], delta["measured"]
-                _fanuc_deltas(item)
+                _native_deltas(item)
             changed.append(item)
         removed.extend(o.as_dict() for o in olds[len(news):])
         added.extend(n.as_dict() for n in news[len(olds):])

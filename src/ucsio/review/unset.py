@@ -27,6 +27,7 @@ user's), and a frame without a value (that is the ``no-value`` lint's case).
 """
 from __future__ import annotations
 
+from .. import vendors
 from ..geometry.frames import number_values
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
@@ -34,41 +35,27 @@ if TYPE_CHECKING:
     from typing import Any
 
 
-TABLES = ("BASE_DATA", "TOOL_DATA")
-
-
-def configuration(cf) -> bool:
-    """Whether ``cf`` is the controller's configuration (``DEFDAT $CONFIG``)."""
-    defdat = cf.extra.get("defdat") if cf is not None else None
-    return isinstance(defdat, dict) and str(defdat.get("name") or "").upper() == "$CONFIG"
-
-
 def is_set(frame, cf=None) -> bool:
-    """False for an unset frame (module docstring); ``cf``: the file it is in."""
-    if frame.vendor not in ("kuka", "fanuc") or frame.pose is None:
+    """False for an unset frame (module docstring); ``cf``: the file it is in.
+    Whether the controller pre-fills the frame, and which names it gives,
+    its vendor says."""
+    if frame.pose is None:
         return True
-    if frame.vendor == "fanuc":
-        if "set_from" in frame.info:        # a program's UFRAME[k]=PR[n]
-            return True
-    elif frame.type not in TABLES and not (frame.type == "FRAME" and configuration(cf)):
+    vendor = vendors.get(frame.vendor)
+    if not vendor.prefilled(frame, cf):
         return True
     values = number_values(frame.numbers)
     if len(values) != 6 or any(v != 0 for v in values):
         return True
     label = (frame.label or "").strip()
-    return bool(label) and not _default_name(frame, label)
+    return bool(label) and not _default_name(vendor, frame, label)
 
 
-def _default_name(frame, label: str) -> bool:
+def _default_name(vendor, frame, label: str) -> bool:
     """Whether ``label`` is a name the controller gave, not a person: the
-    frame's own name (TOOL_NAME[2,]="TOOL_DATA[2]"), or FANUC's default
-    comment (UFrame7, Eoat2: parsing.fanuc.default_comment)."""
-    if label.casefold() == frame.name.casefold():
-        return True
-    if frame.vendor == "fanuc":
-        from ..vendors.fanuc.base import default_comment
-        return default_comment(frame.type, frame.name, label)
-    return False
+    frame's own name (TOOL_NAME[2,]="TOOL_DATA[2]"), or the vendor's default
+    (FANUC's comments UFrame7, Eoat2: vendors.fanuc.base.default_comment)."""
+    return label.casefold() == frame.name.casefold() or vendor.default_label(frame, label)
 
 
 def as_dict(frame, cf=None) -> dict[str, Any]:

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 import os
 
+from .. import vendors
 from ..errors import UcsioError
 from ..geometry.frames import Frame, Pose
 from ..parsing.model import ControllerFile
@@ -58,38 +59,25 @@ def frames_file_in(folder: str) -> str:
 
 
 def find_points(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
-    """The points taught in ``frame`` (of ``cf``), read from the files around it;
-    ``cache`` (any dict kept for a run, as ``batch`` does) reads each file once."""
-    if frame.vendor == "abb":
-        from ..vendors.abb import taught as abb
-        return abb.find(cf, frame, cache)
-    if frame.vendor == "fanuc":
-        from ..vendors.fanuc import taught as fanuc
-        return fanuc.find(cf, frame, cache)
-    from ..vendors.kuka import taught as kuka
-    return kuka.find(cf, frame, cache)
+    """The points taught in ``frame`` (of ``cf``), read from the files around it
+    by its vendor's reader; ``cache`` (any dict kept for a run, as ``batch``
+    does) reads each file once."""
+    read = vendors.get(frame.vendor).taught_points
+    if read is None:
+        raise UcsioError(vendors.missing(frame.vendor, "reader of taught points"),
+                         file=frame.file, line=frame.line)
+    return read(cf, frame, cache)
 
 
 def _chain(cf: ControllerFile, frame: Frame, measured: Pose) -> tuple[list[Pose], list[Pose]]:
     """The poses a taught point goes through to world, simulated and
-    measured, innermost last. ABB: uframe * oframe (robtargets are in the
-    object frame); a measured user frame replaces the uframe, a measured
-    object frame (given in its user frame, patch.measured_in_parent) the
-    oframe. KUKA: the base alone."""
+    measured, innermost last: the vendor's (ABB: uframe * oframe, the
+    measured frame given in its parent by review.reference.measured_in_parent; KUKA:
+    the base alone)."""
     from ..review.reference import measured_in_parent
 
     mine = measured_in_parent(cf, frame, measured)
-    if frame.vendor != "abb":
-        return [frame.pose], [mine]
-    wobj = frame.name[: -len(".oframe")] if frame.info.get("component") == "oframe" else frame.name
-    uframe, oframe = cf.frame(wobj), cf.frame(wobj + ".oframe")
-    for part in (uframe, oframe):
-        if part.pose is None:
-            raise UcsioError(f"{part.name}: the file gives no literal value; the taught points "
-                             "cannot be placed in world", file=part.file, line=part.line)
-    if frame is oframe:
-        return [uframe.pose, oframe.pose], [uframe.pose, mine]
-    return [uframe.pose, oframe.pose], [mine, oframe.pose]
+    return vendors.get(frame.vendor).taught_chain(cf, frame, mine)
 
 
 def in_ucs(cf: ControllerFile, frame: Frame, found: Found) -> list[tuple[float, float, float]]:
@@ -98,13 +86,7 @@ def in_ucs(cf: ControllerFile, frame: Frame, found: Found) -> list[tuple[float, 
     of ``diff --points``). KUKA: as written (the base). ABB: a robtarget is
     in the object frame, so a user frame's points go through its object
     frame; an object frame's are as written."""
-    if frame.vendor != "abb" or frame.info.get("component") == "oframe":
-        return [p.xyz for p in found.points]
-    oframe = cf.frame(frame.name + ".oframe")
-    if oframe.pose is None:
-        raise UcsioError(f"{oframe.name}: the file gives no literal value; the taught points "
-                         "cannot be placed in the user frame", file=oframe.file, line=oframe.line)
-    return [oframe.pose.apply(p.xyz) for p in found.points]
+    return vendors.get(frame.vendor).taught_in_frame(cf, frame, found)
 
 
 def _through(chain: list[Pose], p) -> tuple[float, float, float]:

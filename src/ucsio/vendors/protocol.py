@@ -12,6 +12,7 @@ from ..geometry.angles import AngleColumns, MeasurementColumns
 from ..geometry.frames import Frame, Pose
 from ..parsing.document import Document, Edit
 from ..parsing.model import ControllerFile
+from .common.taught import Found
 from .common.write import Change
 
 
@@ -83,3 +84,32 @@ class Vendor(Protocol):
     review_copy_warning: str | None     # what a patched reviewed copy warns
     # (pose, frame, folder, pr=, posreg=) -> a program that sets a listing's frame
     program_writer: Callable[..., Any] | None
+
+    # -- taught points, unset frames, comparing frames (diff) ---------------------------
+    # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a
+    # frame, read from the files around it (diff --points, plan --at-taught)
+    taught_points: Callable[..., Any] | None
+
+    def taught_chain(self, cf: ControllerFile, frame: Frame,
+                     measured: Pose) -> tuple[list[Pose], list[Pose]]:
+        """The poses a point taught in ``frame`` goes through to world,
+        simulated and measured (``measured``: the frame's measured pose in
+        its parent), innermost last."""
+
+    def taught_in_frame(self, cf: ControllerFile, frame: Frame,
+                        found: Found) -> list[tuple[float, float, float]]:
+        """Each taught point's position in ``frame``'s own coordinates."""
+
+    def prefilled(self, frame: Frame, cf: ControllerFile | None) -> bool:
+        """Whether the controller lists ``frame`` whether anyone taught it or
+        not (an entry of a table of defaults): only such a frame can be unset."""
+
+    def default_label(self, frame: Frame, label: str) -> bool:
+        """Whether ``label`` is a name the controller gives a frame nobody named."""
+
+    # (own key, SPEC's key) pairs: a frame's deltas in the vendor's terms,
+    # added beside SPEC's da, db, dc (FANUC: dw = dc)
+    native_deltas: tuple[tuple[str, str], ...]
+    # whether the controller loads no file ucsio patches, so that a program
+    # sets a measured frame (FANUC: a TP program, not the .va listing)
+    frames_set_by_program: bool

@@ -89,6 +89,26 @@ class Abb:
     program_writer = None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
+    def taught_points(self, cf, frame, cache=None):
+        from .taught import find
+        return find(cf, frame, cache)
+
+    def taught_chain(self, cf, frame, measured):
+        from .taught import chain
+        return chain(cf, frame, measured)
+
+    def taught_in_frame(self, cf, frame, found):
+        from .taught import in_frame
+        return in_frame(cf, frame, found)
+
+    def prefilled(self, frame, cf) -> bool:
+        return False        # RAPID has no table of defaults: every declared frame is the user's
+
+    def default_label(self, frame, label: str) -> bool:
+        return False
+
+    native_deltas = ()
+    frames_set_by_program = False
 
 
 VENDOR = Abb()

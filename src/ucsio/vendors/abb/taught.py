@@ -356,6 +356,35 @@ def find(cf: ControllerFile, frame: Frame, cache: dict | None = None) -> Found:
     return found
 
 
+def chain(cf: ControllerFile, frame: Frame, measured) -> tuple[list, list]:
+    """The poses a robtarget goes through to world, simulated and measured,
+    innermost last: uframe * oframe (robtargets are in the object frame). A
+    measured user frame replaces the uframe, a measured object frame (its
+    pose in its user frame: ``measured``) the oframe."""
+    wobj = _wobj_name(frame)
+    uframe, oframe = cf.frame(wobj), cf.frame(wobj + ".oframe")
+    for part in (uframe, oframe):
+        if part.pose is None:
+            raise UcsioError(f"{part.name}: the file gives no literal value; the taught points "
+                             "cannot be placed in world", file=part.file, line=part.line)
+    if frame is oframe:
+        return [uframe.pose, oframe.pose], [uframe.pose, measured]
+    return [uframe.pose, oframe.pose], [measured, oframe.pose]
+
+
+def in_frame(cf: ControllerFile, frame: Frame, found: Found) -> list[tuple[float, float, float]]:
+    """Each robtarget's position in ``frame``'s coordinates: a robtarget is
+    in the object frame, so a user frame's points go through its object
+    frame; an object frame's are as written."""
+    if frame.info.get("component") == "oframe":
+        return [p.xyz for p in found.points]
+    oframe = cf.frame(frame.name + ".oframe")
+    if oframe.pose is None:
+        raise UcsioError(f"{oframe.name}: the file gives no literal value; the taught points "
+                         "cannot be placed in the user frame", file=oframe.file, line=oframe.line)
+    return [oframe.pose.apply(p.xyz) for p in found.points]
+
+
 _ASSIGNMENT = regex.lazy(r"\s*[A-Za-z_][\w.{}, ]*:=")
 
 

@@ -42,6 +42,17 @@ class Found(Value):
         self.skipped = skipped if skipped is not None else []
 
 
+def alone(frame, measured) -> tuple[list, list]:
+    """A taught point's way to world where it is written in the frame
+    itself: the frame's pose, simulated and measured."""
+    return [frame.pose], [measured]
+
+
+def as_written(found: Found) -> list[tuple[float, float, float]]:
+    """The points' positions as the files write them: in the frame."""
+    return [p.xyz for p in found.points]
+
+
 def files_around(file: str, root_of, suffixes: tuple[str, ...]) -> list:
     """The controller files the readers search, as ``ucsio.parsing.sources.Source``s:
     those with ``suffixes`` below ``root_of(folder parts)``'s folder, on disk

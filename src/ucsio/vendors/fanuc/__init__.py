@@ -108,6 +108,32 @@ class Fanuc:
         return write_beside(pose, frame, folder, pr=pr, posreg=posreg)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
+    def taught_points(self, cf, frame, cache=None):
+        from .taught import find
+        return find(cf, frame, cache)
+
+    def taught_chain(self, cf, frame, measured):
+        from ..common.taught import alone
+        return alone(frame, measured)
+
+    def taught_in_frame(self, cf, frame, found):
+        from ..common.taught import as_written
+        return as_written(found)
+
+    def prefilled(self, frame, cf) -> bool:
+        """Every entry of $MNUFRAME/$MNUTOOL; not a frame a TP program sets
+        (UFRAME[k]=PR[n]): the program says it is set, whatever its values."""
+        return "set_from" not in frame.info
+
+    def default_label(self, frame, label: str) -> bool:
+        """The comment the controller gives a frame nobody named (UFrame7, Eoat2)."""
+        from .base import default_comment
+        return default_comment(frame.type, frame.name, label)
+
+    # W, P, R are SPEC's c, b, a
+    native_deltas = (("dw", "dc"), ("dp", "db"), ("dr", "da"))
+    # the controller does not load .va listings: a TP program sets a frame
+    frames_set_by_program = True
 
 
 VENDOR = Fanuc()
