@@ -4,8 +4,6 @@ positions; geometry, the method and the readers take the vendor-free
 description and never branch on a vendor's name."""
 from __future__ import annotations
 
-import io
-import tokenize
 from pathlib import Path
 
 import numpy as np
@@ -143,25 +141,3 @@ def test_a_kuka_program_is_no_file_of_positions(tmp_path):
     with pytest.raises(UcsioError) as e:
         read_robot(src)
     assert "robot_" in e.value.message
-
-
-def _vendor_names_in(path: Path, root: Path = SRC) -> list[str]:
-    """Where a module's code holds a vendor's name as a string of its own
-    (a comparison, a dict key, an argument): comments and prose do not count."""
-    found = []
-    for tok in tokenize.generate_tokens(io.StringIO(path.read_text()).readline):
-        if tok.type == tokenize.STRING and tok.string.strip("\"'").lower() in NAMES:
-            found.append(f"{path.relative_to(root)}:{tok.start[0]}: {tok.string}")
-    return found
-
-
-def test_no_vendor_names_in_geometry_method_readers_and_frames():
-    modules = [*SRC.glob("geometry/*.py"), *SRC.glob("method/*.py"), *SRC.glob("readers/*.py"),
-               SRC / "commands" / "frames.py"]
-    assert [hit for m in sorted(modules) for hit in _vendor_names_in(m)] == []
-
-
-def test_the_vendor_name_finder_finds_them(tmp_path):
-    probe = tmp_path / "probe.py"
-    probe.write_text('# "kuka" in a comment\nif form == "abb":\n    x = {\'fanuc\': 1}\n')
-    assert [h.split(": ")[1] for h in _vendor_names_in(probe, tmp_path)] == ['"abb"', "'fanuc'"]

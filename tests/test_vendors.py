@@ -5,8 +5,10 @@ file imports its own vendor's package and no other."""
 from __future__ import annotations
 
 import ast
-import re
 import importlib
+import io
+import re
+import tokenize
 import json
 import subprocess
 import sys
@@ -75,47 +77,40 @@ def offenders_in(path: Path, root: Path = SRC.parent) -> list[str]:
     return [text for _, text in sorted(out)]
 
 
-def _modules(*parts: str) -> list[Path]:
-    """The modules of src/ucsio at ``parts`` (folders and files; one that a
-    split has removed is skipped, its successors are in "everything else")."""
-    out = []
-    for part in parts:
-        p = SRC / part
-        out += sorted(p.rglob("*.py")) if p.is_dir() else [p] if p.is_file() else []
-    return out
-
-
-# the modules whose vendor names other points of issue 26 remove
-OTHER_AREAS = ("review/patch.py", "review/program.py", "fleet/batch.py", "readers", "method",
-               "geometry", "commands/frames.py")
-# taught points, unset frames, diff's comparisons, the demo
-MINE = ("taught", "review/unset.py", "review/compare.py", "demo", "commands/demo.py")
-
-
-def _everything_else() -> list[Path]:
-    claimed = set(_modules(*OTHER_AREAS, *MINE))
+def outside_the_vendors() -> list[Path]:
+    """Every module of src/ucsio outside src/ucsio/vendors/ (the registry
+    ``vendors/__init__.py`` is inside: it holds the names as its data)."""
     return [p for p in sorted(SRC.rglob("*.py"))
-            if "vendors" not in p.relative_to(SRC).parts[:1] and p not in claimed]
+            if p.relative_to(SRC).parts[0] != "vendors"]
 
 
-def _check(paths: list[Path]) -> None:
-    assert paths
+def test_no_module_outside_the_vendors_branches_on_a_vendor_name():
+    paths = outside_the_vendors()
+    assert len(paths) > 60
     found = [o for p in paths for o in offenders_in(p)]
     assert not found, "vendor names outside src/ucsio/vendors/:\n" + "\n".join(found)
 
 
-def test_no_vendor_names_in_taught_unset_compare_and_the_demo():
-    _check(_modules(*MINE))
+def strings_naming_a_vendor(path: Path, root: Path = SRC) -> list[str]:
+    """Where a module's code holds a vendor's name as a string of its own,
+    whatever it does with it: comments and prose do not count."""
+    found = []
+    for tok in tokenize.generate_tokens(io.StringIO(path.read_text(encoding="utf-8")).readline):
+        if tok.type == tokenize.STRING and tok.string.strip("\"'").lower() in NAMES:
+            found.append(f"{path.relative_to(root)}:{tok.start[0]}: {tok.string}")
+    return found
 
 
-def test_no_vendor_names_in_the_modules_no_point_claims():
-    _check(_everything_else())
+def test_no_module_outside_the_vendors_holds_a_vendor_name():
+    """Stricter than branching: not even as data (the registry holds the names)."""
+    assert [hit for p in outside_the_vendors() for hit in strings_naming_a_vendor(p)] == []
 
 
-@pytest.mark.xfail(strict=False, reason="issue 26 point 3: the vendor names of writing frames, "
-                   "orientations and robot positions leave with the other areas' branches")
-def test_no_vendor_names_in_writing_orientation_and_robot_positions():
-    _check(_modules(*OTHER_AREAS))
+def test_the_string_finder_finds_them(tmp_path):
+    probe = tmp_path / "probe.py"
+    probe.write_text('# "kuka" in a comment\nif form == "abb":\n    x = {\'fanuc\': 1}\n')
+    assert [h.split(": ")[1] for h in strings_naming_a_vendor(probe, tmp_path)] == \
+        ['"abb"', "'fanuc'"]
 
 
 def test_the_check_sees_each_kind_of_branch(tmp_path):

@@ -47,9 +47,9 @@ class Cell:
 
     @property
     def set_by_program(self) -> bool:
-        """Whether the controller loads no file ucsio patches, so that a
-        program sets the measured frame (FANUC: a TP program)."""
-        return vendors.get(self.vendor).frames_set_by_program
+        """Whether the vendor has a program that sets the measured frame
+        (FANUC: a TP program; its controller loads no file ucsio patches)."""
+        return vendors.get(self.vendor).program_writer is not None
 
 
 CELLS = (

@@ -110,6 +110,3 @@ class Vendor(Protocol):
     # (own key, SPEC's key) pairs: a frame's deltas in the vendor's terms,
     # added beside SPEC's da, db, dc (FANUC: dw = dc)
     native_deltas: tuple[tuple[str, str], ...]
-    # whether the controller loads no file ucsio patches, so that a program
-    # sets a measured frame (FANUC: a TP program, not the .va listing)
-    frames_set_by_program: bool

@@ -108,7 +108,6 @@ class Abb:
         return False
 
     native_deltas = ()
-    frames_set_by_program = False
 
 
 VENDOR = Abb()

@@ -132,8 +132,6 @@ class Fanuc:
 
     # W, P, R are SPEC's c, b, a
     native_deltas = (("dw", "dc"), ("dp", "db"), ("dr", "da"))
-    # the controller does not load .va listings: a TP program sets a frame
-    frames_set_by_program = True
 
 
 VENDOR = Fanuc()

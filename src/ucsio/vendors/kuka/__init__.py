@@ -100,7 +100,6 @@ class Kuka:
         return False        # only the entry's own name, which every vendor's check sees
 
     native_deltas = ()
-    frames_set_by_program = False
 
 
 def _configuration(cf) -> bool:
