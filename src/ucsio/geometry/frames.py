@@ -31,11 +31,13 @@ class AngleColumns:
 
 #: Each vendor's own angle names: KUKA A, B, C; FANUC W, P, R (W = C, R = A);
 #: ABB's quaternion and RobotStudio's Euler ZYX angles rx, ry, rz (rx = C,
-#: rz = A). A vendor not listed, and a table of several vendors, read KUKA's.
+#: rz = A); Yaskawa's rx, ry, rz (the same). A vendor not listed, and a
+#: table of several vendors, read KUKA's.
 VENDOR_ANGLES = {
     "kuka": AngleColumns(("a", "b", "c"), "abc"),
     "fanuc": AngleColumns(("w", "p", "r"), "cba"),
     "abb": AngleColumns(("rx", "ry", "rz"), "cba", quaternion=True),
+    "yaskawa": AngleColumns(("rx", "ry", "rz"), "cba"),
 }
 
 

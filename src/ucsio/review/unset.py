@@ -20,6 +20,9 @@ whose six values X, Y, Z, W, P, R are all exactly 0 and that has no comment
 controller gives a frame nobody named (``UFrame7``, ``Eoat2``) is unset too. A frame a
 TP program sets is set, whatever its values: the program says so.
 
+A vendor's package may judge its own frames (``is_set``): Yaskawa's
+TOOL.CND lists all 64 tools, and one all zeros without a name is unset.
+
 Everything else is set: a named zero base (someone chose it), the FRAMEs a
 program's ``.dat`` declares (a ``NULLFRAME`` someone wrote), every ABB frame
 (RAPID has no table of defaults; a declared tool0-like identity is the
@@ -45,8 +48,13 @@ def configuration(cf) -> bool:
 
 def is_set(frame, cf=None) -> bool:
     """False for an unset frame (module docstring); ``cf``: the file it is in."""
-    if frame.vendor not in ("kuka", "fanuc") or frame.pose is None:
+    if frame.pose is None:
         return True
+    if frame.vendor not in ("kuka", "fanuc"):
+        # a vendor that judges its own tables says so (vendors.yaskawa: TOOL.CND)
+        from .. import vendors
+        judge = getattr(vendors.get(frame.vendor), "is_set", None)
+        return True if judge is None else judge(frame)
     if frame.vendor == "fanuc":
         if "set_from" in frame.info:        # a program's UFRAME[k]=PR[n]
             return True
