@@ -99,17 +99,16 @@ def _blocks(doc: Document, cf: ControllerFile) -> list[_Block]:
     blocks: list[_Block] = []
     block: _Block | None = None
     for pos, line in _lines(doc):
+        if not blocks and line.strip() and not line.startswith("//"):
+            raise _not_a_cnd(doc, pos)
         if line.startswith("//") and not line.startswith("///"):
             block = _open_block(doc, cf, pos, line, first=not blocks)
             if block is not None:
                 blocks.append(block)
             continue
-        if block is None:
-            if not blocks and line.strip():
-                raise _not_a_cnd(doc, pos)
-            if blocks and line.strip():
-                cf.lint(pos, "unknown-line", "a line outside a block ucsio reads, kept as it is",
-                        "info")
+        if not line.strip():
+            continue
+        if block is None:       # in a block ucsio does not read (reported at its head)
             continue
         block.end = pos + len(line)
         if block.kind == "UFRAME":
