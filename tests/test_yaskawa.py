@@ -342,3 +342,15 @@ def test_reading_commands_stay_light(tmp_path):
         res = subprocess.run([sys.executable, "-c", probe, *map(str, args)],
                              capture_output=True, text=True, check=True)
         assert res.stdout.strip() == "", (args, res.stdout)
+
+
+def test_patch_is_refused_and_writes_nothing(tmp_path, capsys):
+    """Writing Yaskawa frames is a later part of the issue: until then patch
+    refuses (a TOOL.CND with ///CRC must never be rewritten) and the file
+    stays as it is."""
+    for name, data, frame in (("UFRAME.CND", UFRAMES, "UF1"), ("TOOL.CND", TOOLS, "UT0")):
+        path = write(tmp_path, name, data)
+        code, out, err = cli(capsys, "patch", path, "--frame", frame, "--set", "1,2,3,0,0,0",
+                             "--in-place")
+        assert code == 2 and f"{path}:1:1: {frame}: Yaskawa has no frame writer yet" in err, err
+        assert path.read_bytes() == data

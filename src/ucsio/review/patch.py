@@ -913,6 +913,16 @@ def _common_run(a: str, b: str, limit: int, from_end: bool = False) -> int:
 _HUNK = regex.lazy(r"^@@ -(\d+)(,\d+)? \+(\d+)(,\d+)? @@")
 
 
+def _refuse_without_writer(frame: Frame, where: dict) -> None:
+    """A vendor whose package says it writes no frames (``frame_writer =
+    None``: Yaskawa, whose TOOL.CND may carry a checksum ucsio cannot
+    compute) is refused before anything is planned."""
+    from .. import vendors
+    if getattr(vendors.get(frame.vendor), "frame_writer", True) is None:
+        raise UcsioError(f"{frame.name}: {vendors.missing(frame.vendor, 'frame writer')}: "
+                         "nothing written", **where, col=1)
+
+
 def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = True,
                 force: bool = False, oframe: bool = False,
                 check_siblings: bool = True, verify: bool = True,
@@ -937,6 +947,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
             same = program_frames(cf, found[0])     # set twice alike: every assignment
     frame = same[0] if same else find_frame(cf, resolve_name(name, oframe))
     where = {"file": frame.file, "line": frame.line}
+    _refuse_without_writer(frame, where)
     if frame.vendor == "fanuc":
         where["col"] = _frame_col(frame)
         kind = cf.extra.get("kind")

@@ -30,6 +30,7 @@ class Yaskawa:
 
     # -- writing frames and programs (patch, program) -----------------------------------
     program_writer = None
+    frame_writer = None     # patch: not yet (a TOOL.CND's ///CRC cannot be recomputed)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def is_set(self, frame) -> bool:
