@@ -145,7 +145,7 @@ def test_user_frames_names_labels_values_and_spans():
 
 
 @pytest.mark.parametrize("crc", [True, False], ids=["with-crc", "without-crc"])
-@pytest.mark.parametrize("ending", ["\r\n", "\n"], ids=["crlf", "lf"])
+@pytest.mark.parametrize("ending", ["\r\n", "\n", "\r"], ids=["crlf", "lf", "cr"])
 def test_tool_cnd_with_and_without_crc_round_trips(crc, ending):
     text = (tool(0, "STANDARD TOOL", "0.000,0.000,0.000,0.0000,90.0000,0.0000", crc)
             + tool(1, "", "0.000,0.000,0.000,0.0000,0.0000,0.0000", crc)
@@ -260,6 +260,8 @@ def test_lints_of_the_traps():
     ("//TOOL 0\n///NAME T\n0.000,0.000\n", "3:12", "a tool's pose line is six numbers"),
     ("hello\n//TOOL 0\n", "1:1", "not a UFRAME.CND or TOOL.CND"),
     ("", "", "not a UFRAME.CND or TOOL.CND"),
+    ("//UFRAME 1\n////BUSER " + "9" * 400 + ",0,0,0,0,0\n", "2:11", "number out of range"),
+    ("//UFRAME 99999999999\n", "1:10", "out of range (32 bits)"),
 ])
 def test_bad_input_is_one_error_at_its_place(tmp_path, capsys, text, where, words):
     path = write(tmp_path, "UFRAME.CND", crlf(text))

@@ -21,6 +21,8 @@ a span of the document, so a patch can replace exactly it.
 """
 from __future__ import annotations
 
+import math
+
 from ...geometry.frames import UNKNOWN, Frame, Number, Pose, flange, frame_parent, robot, unit
 from ...parsing import regex
 from ...parsing.document import Document, Span, lf_lines
@@ -212,7 +214,10 @@ def _numbers(doc: Document, text: str, at: int, what: str) -> dict[str, Number]:
         if _NUMBER.match(field) is None:
             raise doc.error(f"{what}: not a number: {field[:30]!r}" if field else
                             f"{what}: a number is missing here", pos)
-        out[COMPONENTS[i]] = Number(Span(pos, pos + len(field)), field, float(field))
+        value = float(field)
+        if not math.isfinite(value):    # 400 digits: no controller holds it, no pose is made of it
+            raise doc.error(f"{what}: number out of range: {field[:30]!r}", pos)
+        out[COMPONENTS[i]] = Number(Span(pos, pos + len(field)), field, value)
         pos += len(field) + 1
     if len(out) < len(COMPONENTS):
         raise doc.error(f"{what} is six numbers: x,y,z (mm), rx,ry,rz (deg); "
