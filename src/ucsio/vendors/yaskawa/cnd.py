@@ -53,8 +53,8 @@ def sniff(doc: Document) -> bool:
     """Whether a file begins like a UFRAME.CND or TOOL.CND (a git temporary
     file has no suffix to say so)."""
     head = doc.text[:64].lstrip("\ufeff \t\r\n")
-    return _BLOCK.match(head.split("\n", 1)[0].rstrip("\r")) is not None and \
-        head.startswith(("//UFRAME", "//TOOL"))
+    m = _BLOCK.match(head.split("\n", 1)[0].rstrip("\r"))
+    return m is not None and m.group("kind") in KINDS
 
 
 def _lines(doc: Document):
