@@ -211,12 +211,15 @@ def same_as_whole_tree(doc: Document, full, full_err) -> None:
     from ucsio.vendors.abb import rapid
     from ucsio.vendors.fanuc import tp
     from ucsio.vendors.fanuc import va
-    from ucsio.vendors import detect as detect_vendor
+    from ucsio.vendors import BY_NAME, detect as detect_vendor
+    from ucsio.parsing.controller import Unsupported
     from ucsio.parsing.document import looks_binary, lf_lines
 
-    if looks_binary(doc.raw):
-        return
+    if looks_binary(doc.raw) or isinstance(full_err, Unsupported):
+        return          # refused by its first line (another controller's) before any grammar
     vendor = detect_vendor(doc)
+    if not BY_NAME[vendor].grammars:
+        return          # a vendor read line by line: no whole-file tree to compare with
     if vendor == "fanuc":
         kind = fanuc.kind_of(doc)
         text = lf_lines(doc.text)

@@ -1,7 +1,8 @@
 """Files ucsio recognises and does not read (issue 24 points 3 and 8).
 
 - Another controller's file named on its own (a Yaskawa .JBI, its
-  SYSTEM.SYS and VAR.DAT whose suffixes are ABB's and KUKA's, a Stäubli
+  SYSTEM.SYS and VAR.DAT whose suffixes are ABB's and KUKA's, a .CND other
+  than UFRAME.CND and TOOL.CND, which ucsio reads, a Stäubli
   .dtx, a Universal Robots .installation) is refused with what it is, exit
   2, never "syntax error at 1:1"; in a folder it is listed as not read.
 - A FANUC backup's own .DAT files (ORDERFIL.DAT, UPDATES.DAT:
@@ -23,8 +24,15 @@ from ucsio.cli import main
 DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
+# (Yaskawa's UFRAME.CND and TOOL.CND are read: tests/test_yaskawa.py)
 FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
-                 for p in (CORPUS / vendor).iterdir() if p.suffix not in (".md", ".tsv"))
+                 for p in (CORPUS / vendor).iterdir()
+                 if p.suffix not in (".md", ".tsv") and ".CND" not in p.name.upper())
+# what a refusal says of the vendor's files
+NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "
+                       "UFRAME.CND and TOOL.CND)",
+            "staubli": "does not read Stäubli files yet",
+            "ur": "does not read Universal Robots files yet"}
 
 
 def cli(capsys, *args):
@@ -39,8 +47,7 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
     code, out, err = cli(capsys, "frames", path)
     assert code == 2 and out == ""
     assert "does not read" in err and "syntax error" not in err, err
-    whose = {"yaskawa": "Yaskawa", "staubli": "Stäubli", "ur": "Universal Robots"}
-    assert f"does not read {whose[path.parent.name]} files yet" in err
+    assert NOT_READ[path.parent.name] in err
 
 
 @pytest.mark.parametrize("name, text, what", [
@@ -48,8 +55,9 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
     # the suffixes are ABB's and KUKA's: the first line says whose they are
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n", "Yaskawa Motoman file"),
     ("VAR.DAT", "//VAR\r\n///PFNUM 6,0,0,0\r\n", "Yaskawa Motoman file"),
-    ("TOOL.CND", "//TOOL 0\r\n///NAME STANDARD TOOL\r\n0.000,0.000,0.000,0.0000,0.0000,0.0000\r\n",
-     "Yaskawa Motoman file"),
+    # a condition file other than UFRAME.CND and TOOL.CND: its first line says so
+    ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n", "Yaskawa Motoman file"),
+    ("RBCALIB.DAT", "//RBCALIB\r\n///MTOOL 0\r\n", "Yaskawa Motoman file"),
 ])
 def test_another_controllers_file_named_on_its_own(tmp_path, capsys, name, text, what):
     path = tmp_path / name
@@ -57,7 +65,7 @@ def test_another_controllers_file_named_on_its_own(tmp_path, capsys, name, text,
     for command in ("frames", "check"):
         code, out, err = cli(capsys, command, path)
         assert code == 2, (command, out, err)
-        assert f"{path}: a {what}" in err and "does not read Yaskawa files yet" in err
+        assert f"{path}: a {what}" in err and NOT_READ["yaskawa"] in err
         assert "1:1" not in err
 
 

@@ -21,6 +21,7 @@ FANUC_SEEDS = [p for p in fuzzing.seed_files(max_size=40_000)
                if p.suffix.lower() in (".va", ".dg", ".ls")
                and (p.stat().st_size <= 12_000 or p.name.endswith(("UB10200_RBT01__sysframe.va",
                                                                    "kjltvr411670r01__SYSFRAME.VA")))]
+YASKAWA_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".cnd"]
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -43,6 +44,14 @@ def test_mutated_krl_files(seed, ops):
 @settings(max_examples=120, **SETTINGS)
 @given(seed=st.sampled_from(FANUC_SEEDS), ops=ops)
 def test_mutated_fanuc_files(seed, ops):
+    fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
+
+
+@settings(max_examples=60, **SETTINGS)
+@given(seed=st.sampled_from(YASKAWA_SEEDS or [None]), ops=ops)
+def test_mutated_yaskawa_files(seed, ops):
+    if seed is None:
+        pytest.skip("no Yaskawa .CND seed (the shared corpus is absent)")
     fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
 
 

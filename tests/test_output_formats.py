@@ -424,6 +424,7 @@ CODES_EVER = [
     "base-not-world",
     "not-a-frame-array", "group-mismatch", "out-of-range", "unread-frame-set", "label-source",
     "after-end", "unread-line",
+    "lf-only", "group-flags", "angle-range", "duplicate-block", "track-position", "unknown-line",
     "syntax-error", "unreadable", "round-trip",
 ]
 

@@ -1,16 +1,18 @@
 """List every frame in controller files: ABB wobjdata (uframe and NAME.oframe),
 tooldata and pose data; KUKA BASE_DATA[n], TOOL_DATA[n] and other FRAME data;
 FANUC user and tool frames of sysframe.va (UF3, UT2, UF3@2 for group 2) and
-those a TP program (.ls) sets.
+those a TP program (.ls) sets; Yaskawa user frames of UFRAME.CND (UF1) and
+tools of TOOL.CND (UT0).
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat .va .dg .ls below it) or a .zip archive (members named
+.prg .dat .va .dg .ls .cnd below it) or a .zip archive (members named
 ARCHIVE.zip!path). A file that cannot be read is reported on stderr (with
 --json also in "errors") and the others are still listed; exit 2 at the end
 if any could not be read. A FANUC backup's binary files (.tp .sv .vr) are
 counted as not read (--json: "not_read").
 
-Unset frames (KUKA configuration entries and FANUC sysframe.va entries whose
+Unset frames (KUKA configuration entries, FANUC sysframe.va entries and
+Yaskawa TOOL.CND tools whose
 six values are all 0 and that have no name: the controller's defaults, which
 fill most of a $config.dat or a sysframe.va) are counted in one line, not
 listed; --all lists them too. --json always

@@ -1,8 +1,8 @@
 """Whole backups: the controller files in folders and ``.zip`` archives.
 
 A command given a folder (an ABB backup or ``RAPID`` tree, a KUKA ``KRC``
-tree, a FANUC backup) reads every ``.mod .modx .sys .sysx .prg .dat`` and
-``.va .dg .ls`` below it (any case); given a ``.zip`` (a KUKA archive) it
+tree, a FANUC or Yaskawa backup) reads every ``.mod .modx .sys .sysx .prg
+.dat``, ``.va .dg .ls`` and ``.cnd`` below it (any case); given a ``.zip`` (a KUKA archive) it
 reads the same members straight from the archive with the standard library,
 never extracting anything to disk. A FANUC backup's binary files (``.tp``
 programs, ``.sv`` system and ``.vr`` variable files) are listed as not read

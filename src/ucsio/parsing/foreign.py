@@ -2,9 +2,10 @@
 
 Two kinds:
 
-- other controllers' files: Yaskawa Motoman (``.JBI`` jobs, ``.CND``
-  condition files, and the ``SYSTEM.SYS``/``VAR.DAT`` of its backups, whose
-  suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
+- other controllers' files: Yaskawa Motoman's that ucsio does not read yet
+  (``.JBI`` jobs, the ``.CND`` condition files other than UFRAME.CND and
+  TOOL.CND, and the ``SYSTEM.SYS``/``VAR.DAT``/``RBCALIB.DAT`` of its
+  backups, whose suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
   (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
   ``.installation``);
 - a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
@@ -24,13 +25,18 @@ import os
 from . import regex
 
 # (what it is, whose files ucsio does not read, suffixes that say it, a
-# pattern its first characters match where its suffix is another vendor's)
+# pattern its first characters match where its suffix is another vendor's).
+# A Yaskawa .CND is read by its vendor (ucsio.vendors.yaskawa) where it is a
+# UFRAME.CND or TOOL.CND (//UFRAME n, //TOOL n) and refused by its first line
+# where it is another condition file.
 KNOWN = (
     ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
-    ("a Yaskawa Motoman file", "Yaskawa", (".cnd", ".prm"), r"/SYSTEM\b|//[A-Z]+"),
+    ("a Yaskawa Motoman file", "Yaskawa", (".prm",), r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b)[A-Z]+"),
     ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
     ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
 )
+# what ucsio reads of a vendor's files, where it reads some: the refusal says so
+READS = {"Yaskawa": "UFRAME.CND and TOOL.CND"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else
 _KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")
@@ -43,12 +49,21 @@ def other_vendor(name: str, head: str) -> str | None:
     suffix = os.path.splitext(name)[1].lower()
     for what, whose, suffixes, _p in KNOWN:
         if suffix in suffixes:
-            return f"{what} ({suffix.upper()[1:]}): ucsio does not read {whose} files yet"
+            return f"{what} ({suffix.upper()[1:]}): {_not_read(whose)}"
     text = head.lstrip("\ufeff \t\r\n")
     for what, whose, pattern in _HEADS:
         if pattern.match(text):
-            return f"{what}: ucsio does not read {whose} files yet"
+            return f"{what}: {_not_read(whose)}"
     return None
+
+
+def _not_read(whose: str) -> str:
+    """'ucsio does not read Stäubli files yet', or, of a vendor ucsio reads
+    some files of, which ones."""
+    reads = READS.get(whose)
+    if reads is None:
+        return f"ucsio does not read {whose} files yet"
+    return f"ucsio does not read this {whose} file yet (of {whose}'s files it reads {reads})"
 
 
 def is_fanuc_backup(names) -> bool:

@@ -87,6 +87,9 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
     same = assignments(cf, resolve_name(name, oframe)) if assignments is not None else []
     frame = same[0] if same else find_frame(cf, resolve_name(name, oframe))
     writer = vendors.get(frame.vendor)
+    if writer.plan_changes is None:         # a vendor that writes no frames (yet)
+        raise UcsioError(f"{frame.name}: {vendors.missing(frame.vendor, 'frame writer')}: "
+                         "nothing written", file=frame.file, line=frame.line, col=1)
     where = writer.where(frame)
     if writer.check_patchable is not None:      # FANUC: which listings are written back
         writer.check_patchable(cf, frame, where, warnings)

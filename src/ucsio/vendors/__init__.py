@@ -46,6 +46,9 @@ VENDORS = (
           (("krl", ("file",)),), fallback=True),
     Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc",
           (("va", ("file",)), ("tp", ("file",)))),
+    # UFRAME.CND and TOOL.CND, read line by line (no grammar); the rest of a
+    # Yaskawa backup is refused by parsing.foreign
+    Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", ()),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
