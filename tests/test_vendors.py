@@ -96,7 +96,7 @@ def strings_naming_a_vendor(path: Path, root: Path = SRC) -> list[str]:
     whatever it does with it: comments and prose do not count."""
     found = []
     for tok in tokenize.generate_tokens(io.StringIO(path.read_text(encoding="utf-8")).readline):
-        if tok.type == tokenize.STRING and tok.string.strip("\"'").lower() in NAMES:
+        if tok.type == tokenize.STRING and tok.string.strip("\"'") in NAMES:
             found.append(f"{path.relative_to(root)}:{tok.start[0]}: {tok.string}")
     return found
 

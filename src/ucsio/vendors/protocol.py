@@ -50,23 +50,21 @@ class Vendor(Protocol):
     same_rotation_tolerance: float      # deg: a quarter of the written angle step
     readback_angle: float               # deg: the rotation a written frame reads back within
 
-    def plan_changes(self, frame: Frame, pose: Pose) -> list[Change]:
-        """The number changes that write ``pose`` into ``frame`` natively."""
-
-    def translation_changes(self, frame: Frame, pose: Pose) -> list[Change]:
-        """Those of x, y, z only (a solved TCP)."""
-
-    def edits_for(self, frame: Frame, changes: list[Change]) -> list[Edit]:
-        """The text edits that make ``frame`` read ``changes``."""
-
-    def where(self, frame: Frame) -> dict:
-        """file, line (and col) a refusal of ``frame`` names."""
-
-    def read_again(self, cf: ControllerFile, frame: Frame) -> Frame:
-        """``frame`` in the patched text ``cf``."""
-
-    def as_module(self, text: str) -> str:
-        """One declaration's text as a file the vendor's grammar reads."""
+    # The frame writer: None all six where the vendor writes no frames (yet), and
+    # patch says so. (Attributes, not methods: a method set to None would make
+    # the vendor fail isinstance(vendor, Vendor).)
+    # (frame, pose) -> the number changes that write ``pose`` into ``frame`` natively
+    plan_changes: Callable[[Frame, Pose], list[Change]] | None
+    # (frame, pose) -> those of x, y, z only (a solved TCP)
+    translation_changes: Callable[[Frame, Pose], list[Change]] | None
+    # (frame, changes) -> the text edits that make ``frame`` read ``changes``
+    edits_for: Callable[[Frame, list[Change]], list[Edit]] | None
+    # frame -> file, line (and col) a refusal of ``frame`` names
+    where: Callable[[Frame], dict] | None
+    # (patched cf, frame) -> ``frame`` in the patched text
+    read_again: Callable[[ControllerFile, Frame], Frame] | None
+    # one declaration's text -> a file the vendor's grammar reads
+    as_module: Callable[[str], str] | None
 
     # ``declaration_end(text, last)``: the end of a declaration whose last number ends
     # at ``last``; None: a declaration is not read back alone (the whole file)
