@@ -18,7 +18,7 @@ from ucsio.method.measurement import spec_orientation
 from ucsio.method.mistakes import Reading, alternatives
 from ucsio.readers.measurement import parse_measurement
 from ucsio.readers.robot import read_robot
-from ucsio.vendors.common.orientation import angle_columns, measurement_forms
+from ucsio.vendors import angle_columns, measurement_forms
 from ucsio.vendors.protocol import Vendor
 
 SRC = Path(__file__).resolve().parent.parent / "src" / "ucsio"

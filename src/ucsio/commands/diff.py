@@ -215,10 +215,10 @@ def _one_frame(args) -> int:
 
 def delta_table(sim: dict, mea: dict, vendor: str | None, delta: str = "Δ") -> str:
     """Simulated, measured and their difference, in the vendor's own angle
-    names (vendors.common.orientation.angle_columns) and, where it writes
+    names (vendors.angle_columns) and, where it writes
     one, its quaternion. The Δ row is the difference of the numbers shown above it, so
     it adds up (SPEC's unrounded Δ is in --json)."""
-    from ..vendors.common.orientation import angle_columns
+    from ..vendors import angle_columns
 
     cols = angle_columns(vendor)
     rows = []

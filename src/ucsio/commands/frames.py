@@ -69,7 +69,7 @@ def run(args) -> int:
     unset = sum(len(c.frames) for _, c in parsed) - len(frames)
     # the vendor's own angle names where every frame is one vendor's (FANUC W, P, R; ABB
     # RobotStudio's rx, ry, rz beside the quaternion), else Pose.abc's a, b, c
-    from ..vendors.common.orientation import angle_columns
+    from ..vendors import angle_columns
     cols = angle_columns({f.vendor for f in frames})
     rows = []
     for f in frames:

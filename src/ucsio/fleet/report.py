@@ -1025,7 +1025,7 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
     for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
         body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
     if e.get("simulated") or e.get("frame"):
-        from ..vendors.common.orientation import angle_columns
+        from ..vendors import angle_columns
         cols = angle_columns(e.get("vendor"))       # the vendor's own names (FANUC w p r, ...)
         rows = _pose_rows("simulated", e.get("simulated"), cols.keys) + _pose_rows(
             "measured" if e.get("accepted") else "fit (rejected)", e.get("frame"), cols.keys)

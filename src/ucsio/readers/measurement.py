@@ -40,7 +40,7 @@ from ..errors import UcsioError
 from ..geometry.arrays import flange_matrices
 from ..method.measurement import Measurement, spec_orientation
 from ..parsing.document import text_lines
-from ..vendors.common.orientation import measurement_forms
+from ..vendors import measurement_forms
 from .text import read_text, too_large
 
 #: Each vendor's orientation columns, by its name (``Measurement.form``), as

@@ -230,7 +230,7 @@ def _pose_text(d: dict, extra: int = 0) -> str:
     that the written precision would round away)."""
     if d.get("x") is None:
         return "no value"
-    from ..vendors.common.orientation import angle_columns
+    from ..vendors import angle_columns
 
     t, a, q = 3 + extra, 4 + extra, 6 + extra
     cols = angle_columns(d.get("vendor"))        # the vendor's own names (FANUC w p r, ...)
@@ -267,7 +267,7 @@ def change_lines(result: dict[str, Any]) -> list[str]:
         head = f"~ {_named(c)}: {', '.join(c['changes'])} changed"
         lines.append(head)
         if "dx" in c and "value" in c["changes"]:
-            from ..vendors.common.orientation import angle_columns
+            from ..vendors import angle_columns
             cols = angle_columns(c.get("vendor"))
             angles = "  ".join(f"d{name} {c['d' + k]:+.4f}"
                                for name, k in zip(cols.names, cols.keys))

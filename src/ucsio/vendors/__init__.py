@@ -12,9 +12,11 @@ Generic code never compares vendor names: it asks ``get(frame.vendor)``.
 from __future__ import annotations
 
 import os
+import sys
 
 TYPE_CHECKING = False      # typing costs a cold start; annotations are strings
 if TYPE_CHECKING:
+    from ..geometry.angles import AngleColumns, MeasurementColumns
     from .protocol import Vendor
 
 
@@ -62,8 +64,9 @@ def get(name: str) -> Vendor:
     """The vendor called ``name``, its package imported on first use."""
     vendor = _loaded.get(name)
     if vendor is None:
-        import importlib
-        vendor = _loaded[name] = importlib.import_module(BY_NAME[name].package).VENDOR
+        package = BY_NAME[name].package
+        __import__(package)         # importlib itself would cost every command its import
+        vendor = _loaded[name] = sys.modules[package].VENDOR
     return vendor
 
 
@@ -100,8 +103,29 @@ def missing(name: str, what: str) -> str:
 def lint_codes() -> dict[str, str]:
     """Every vendor's lint codes (``check --ignore`` accepts exactly these),
     from each vendor's ``lints`` module: a table, imported without its parser."""
-    import importlib
     out: dict[str, str] = {}
     for e in VENDORS:
-        out.update(importlib.import_module(e.package + ".lints").LINT_CODES)
+        __import__(e.package + ".lints")
+        out.update(sys.modules[e.package + ".lints"].LINT_CODES)
     return out
+
+
+def angle_columns(names) -> AngleColumns:
+    """The angle columns of a table of frames of the vendors ``names`` (one
+    name, or several): that vendor's own where they are one, else Pose.abc's
+    a, b, c (also for no vendor, or one not registered)."""
+    names = {names} if isinstance(names, str) or names is None else set(names)
+    only = names.pop() if len(names) == 1 else None
+    if only in BY_NAME:
+        return get(only).angles
+    from ..geometry.angles import POSE_ANGLES
+    return POSE_ANGLES
+
+
+def measurement_forms() -> list[tuple[str, MeasurementColumns]]:
+    """Every vendor's orientation columns in SPEC's measurement CSV, by vendor
+    name, in the order of their first column: messages list them the same
+    whatever the registry's order."""
+    forms = [(e.name, get(e.name).measurement_columns) for e in VENDORS]
+    return sorted(((name, cols) for name, cols in forms if cols is not None),
+                  key=lambda form: form[1].names[0])
