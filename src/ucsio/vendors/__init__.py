@@ -60,6 +60,64 @@ GRAMMARS = tuple(g for e in VENDORS for g in e.grammars)
 _loaded: dict[str, Vendor] = {}
 
 
+class Defaults:
+    """What a vendor's class has unless it says otherwise (each vendor's
+    ``VENDOR`` derives from it): no capability it has not written (None), the
+    shared number edits of ``vendors.common.write``, and taught points written
+    in the frame itself. Here, beside the registry, so that a vendor's package
+    costs a command no module more."""
+
+    def binary_refusal(self, path: str) -> str | None:
+        return None
+
+    measurement_columns = None
+    robot_suffixes: tuple[str, ...] = ()
+    robot_positions = None
+
+    # the frame writer: each vendor's plan_changes; the rest shared where it does not differ
+    plan_changes = None
+
+    def translation_changes(self, frame, pose):
+        from .common.write import translation_changes
+        return translation_changes(frame, pose)
+
+    def edits_for(self, frame, changes):
+        from .common.write import edits_for
+        return edits_for(frame, changes)
+
+    def where(self, frame) -> dict:
+        from .common.write import where
+        return where(frame)
+
+    def read_again(self, cf, frame):
+        from .common.write import read_again
+        return read_again(cf, frame)
+
+    def as_module(self, text: str) -> str:
+        return text                 # a declaration's text reads as a file as it is
+
+    declaration_end = assignments = check_patchable = check_siblings = check_readback = None
+    in_place_refusal = review_copy_warning = program_writer = None
+
+    taught_points = None
+
+    def taught_chain(self, cf, frame, measured):
+        from .common.taught import alone
+        return alone(frame, measured)
+
+    def taught_in_frame(self, cf, frame, found):
+        from .common.taught import as_written
+        return as_written(found)
+
+    def prefilled(self, frame, cf) -> bool:
+        return False                # no table of defaults: every frame listed is someone's
+
+    def default_label(self, frame, label: str) -> bool:
+        return False
+
+    native_deltas: tuple[tuple[str, str], ...] = ()
+
+
 def get(name: str) -> Vendor:
     """The vendor called ``name``, its package imported on first use."""
     vendor = _loaded.get(name)

@@ -6,10 +6,10 @@ methods import the parser and the rest only when called.
 from __future__ import annotations
 
 from ...geometry.angles import AngleColumns, MeasurementColumns
-from .. import BY_NAME
+from .. import BY_NAME, Defaults
 
 
-class Abb:
+class Abb(Defaults):
     name = "abb"
     title = "ABB"
 
@@ -21,9 +21,6 @@ class Abb:
     def parse(self, doc, full: bool = False, beside: bool = True):
         from .rapid import parse
         return parse(doc, full=full)
-
-    def binary_refusal(self, path: str) -> str | None:
-        return None
 
     # -- orientation and numbers ------------------------------------------------------
     # quaternions (q1 real); tables show RobotStudio's Euler ZYX rx, ry, rz (rx = C, rz = A)
@@ -50,22 +47,6 @@ class Abb:
         from .write import plan
         return plan(frame, pose)
 
-    def translation_changes(self, frame, pose):
-        from ..common.write import translation_changes
-        return translation_changes(frame, pose)
-
-    def edits_for(self, frame, changes):
-        from ..common.write import edits_for
-        return edits_for(frame, changes)
-
-    def where(self, frame) -> dict:
-        from ..common.write import where
-        return where(frame)
-
-    def read_again(self, cf, frame):
-        from ..common.write import read_again
-        return read_again(cf, frame)
-
     def declaration_end(self, text: str, last: int) -> int:
         from .write import declaration_end
         return declaration_end(text, last)
@@ -82,11 +63,6 @@ class Abb:
         from .write import check_readback
         check_readback(again, changes, path)
 
-    assignments = None          # a declaration sets a frame once
-    check_patchable = None      # every module is written back
-    in_place_refusal = None
-    review_copy_warning = None
-    program_writer = None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):
@@ -101,13 +77,6 @@ class Abb:
         from .taught import in_frame
         return in_frame(cf, frame, found)
 
-    def prefilled(self, frame, cf) -> bool:
-        return False        # RAPID has no table of defaults: every declared frame is the user's
-
-    def default_label(self, frame, label: str) -> bool:
-        return False
-
-    native_deltas = ()
 
 
 VENDOR = Abb()

@@ -7,9 +7,10 @@ what the three readers share.
 from __future__ import annotations
 
 from ...geometry.angles import AngleColumns, MeasurementColumns
+from .. import Defaults
 
 
-class Fanuc:
+class Fanuc(Defaults):
     name = "fanuc"
     title = "FANUC"
 
@@ -57,9 +58,6 @@ class Fanuc:
     same_rotation_tolerance = 2.5e-4    # deg: a quarter of the written step (0.001 deg)
     readback_angle = 1e-3               # deg: W, P, R to 0.001 deg read back within this
     # a program's PR lines stand above the frame's: verified by reading the whole file
-    declaration_end = None
-    check_siblings = None
-    check_readback = None
 
     def plan_changes(self, frame, pose):
         from .write import plan
@@ -80,9 +78,6 @@ class Fanuc:
     def read_again(self, cf, frame):
         from .write import read_again
         return read_again(cf, frame)
-
-    def as_module(self, text: str) -> str:
-        return text
 
     def assignments(self, cf, name: str):
         from .write import assignments
@@ -111,14 +106,6 @@ class Fanuc:
     def taught_points(self, cf, frame, cache=None):
         from .taught import find
         return find(cf, frame, cache)
-
-    def taught_chain(self, cf, frame, measured):
-        from ..common.taught import alone
-        return alone(frame, measured)
-
-    def taught_in_frame(self, cf, frame, found):
-        from ..common.taught import as_written
-        return as_written(found)
 
     def prefilled(self, frame, cf) -> bool:
         """Every entry of $MNUFRAME/$MNUTOOL; not a frame a TP program sets

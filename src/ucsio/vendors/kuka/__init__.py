@@ -6,9 +6,10 @@ methods import the parser and the rest only when called.
 from __future__ import annotations
 
 from ...geometry.angles import AngleColumns, MeasurementColumns
+from .. import Defaults
 
 
-class Kuka:
+class Kuka(Defaults):
     name = "kuka"
     title = "KUKA"
 
@@ -19,9 +20,6 @@ class Kuka:
     def parse(self, doc, full: bool = False, beside: bool = True):
         from .krl import parse
         return parse(doc, full=full)
-
-    def binary_refusal(self, path: str) -> str | None:
-        return None
 
     # -- orientation and numbers ------------------------------------------------------
     angles = AngleColumns(("a", "b", "c"), "abc")       # A, B, C: Rz(A)·Ry(B)·Rx(C)
@@ -49,45 +47,15 @@ class Kuka:
         from .write import translation
         return translation(frame, pose)
 
-    def edits_for(self, frame, changes):
-        from ..common.write import edits_for
-        return edits_for(frame, changes)
-
-    def where(self, frame) -> dict:
-        from ..common.write import where
-        return where(frame)
-
-    def read_again(self, cf, frame):
-        from ..common.write import read_again
-        return read_again(cf, frame)
-
     def declaration_end(self, text: str, last: int) -> int:
         from .write import declaration_end
         return declaration_end(text, last)
 
-    def as_module(self, text: str) -> str:
-        return text
-
-    assignments = None
-    check_patchable = None
-    check_siblings = None
-    check_readback = None
-    in_place_refusal = None
-    review_copy_warning = None
-    program_writer = None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):
         from .taught import find
         return find(cf, frame, cache)
-
-    def taught_chain(self, cf, frame, measured):
-        from ..common.taught import alone
-        return alone(frame, measured)
-
-    def taught_in_frame(self, cf, frame, found):
-        from ..common.taught import as_written
-        return as_written(found)
 
     def prefilled(self, frame, cf) -> bool:
         """A BASE_DATA[n] or TOOL_DATA[n] entry, or another FRAME of the
@@ -96,10 +64,6 @@ class Kuka:
         return frame.type in ("BASE_DATA", "TOOL_DATA") or (
             frame.type == "FRAME" and _configuration(cf))
 
-    def default_label(self, frame, label: str) -> bool:
-        return False        # only the entry's own name, which every vendor's check sees
-
-    native_deltas = ()
 
 
 def _configuration(cf) -> bool:
