@@ -218,3 +218,17 @@ def test_a_measured_frame_is_not_a_tool(tmp_path, capsys):
                          solution(tmp_path, Pose.from_abc(1, 2, 3, 0, 0, 0)), "--in-place")
     assert code == 2 and "relative to the flange" in err and path.read_bytes() == data
 
+
+
+def test_patch_stays_light(tmp_path):
+    """patch of a UFRAME.CND imports none of numpy, scipy, lark."""
+    import subprocess
+    import sys
+    path = write(tmp_path, "UFRAME.CND", UFRAMES)
+    probe = ("import sys, io, contextlib\nfrom ucsio.cli import main\n"
+             "with contextlib.redirect_stdout(io.StringIO()):\n    main(sys.argv[1:])\n"
+             "print(' '.join(m for m in ('numpy', 'scipy', 'lark') if m in sys.modules))")
+    args = ["patch", str(path), "--frame", "UF1", "--set", "1,2,3,4,5,6"]
+    res = subprocess.run([sys.executable, "-c", probe, *args], capture_output=True, text=True,
+                         check=True)
+    assert res.stdout.strip() == "", res.stdout
