@@ -346,13 +346,12 @@ def test_reading_commands_stay_light(tmp_path):
         assert res.stdout.strip() == "", (args, res.stdout)
 
 
-def test_patch_is_refused_and_writes_nothing(tmp_path, capsys):
-    """Writing Yaskawa frames is a later part of the issue: until then patch
-    refuses (a TOOL.CND with ///CRC must never be rewritten) and the file
-    stays as it is."""
-    for name, data, frame in (("UFRAME.CND", UFRAMES, "UF1"), ("TOOL.CND", TOOLS, "UT0")):
-        path = write(tmp_path, name, data)
-        code, out, err = cli(capsys, "patch", path, "--frame", frame, "--set", "1,2,3,0,0,0",
-                             "--in-place")
-        assert code == 2 and f"{path}:1:1: {frame}: Yaskawa has no frame writer yet" in err, err
-        assert path.read_bytes() == data
+def test_patch_of_a_tool_cnd_with_crc_is_refused_and_writes_nothing(tmp_path, capsys):
+    """A TOOL.CND with ///CRC must never be rewritten: patch refuses it, at
+    its ///CRC line, and the file stays as it is (the rest of patch:
+    tests/test_yaskawa_patch.py)."""
+    path = write(tmp_path, "TOOL.CND", TOOLS)
+    code, out, err = cli(capsys, "patch", path, "--frame", "UT0", "--set", "1,2,3,0,0,0",
+                         "--in-place")
+    assert code == 2 and f"{path}:2:1: UT0: this TOOL.CND carries a ///CRC checksum" in err, err
+    assert path.read_bytes() == TOOLS

@@ -3,7 +3,8 @@
 numbers.
 
 Inputs: FILE (a RAPID module, a KRL .dat file, a FANUC TP program .ls that
-sets the frame from literal PR[n,i]= lines, or a FANUC sysframe.va; not a
+sets the frame from literal PR[n,i]= lines, a FANUC sysframe.va, or a Yaskawa
+UFRAME.CND or TOOL.CND without ///CRC; not a
 file inside a .zip archive: extract it first), the frame's name, and the
 values: --measured
 SOLUTION.json (written by `ucsio solve -o`; - reads it from standard input),
@@ -43,7 +44,13 @@ their own (PR[16]=LPOS alone, LPOS-LPOS zeros, an indirect index, a value
 another frame reads too) or sets the frame twice differently. A UTk gets the
 solved TCP's x, y, z. A sysframe.va gets a reviewed copy (-o OUT; never
 --in-place): the controller does not load .va files; `ucsio program`
-writes a TP program that sets the frame."""
+writes a TP program that sets the frame.
+
+Yaskawa: a UFRAME.CND's ////BUSER numbers are rewritten (x, y, z with 3
+decimals, rx, ry, rz with 4; --set's A, B, C are rz, ry, rx), with a warning
+that the frame's taught points no longer produce it; a TOOL.CND without
+///CRC takes a solved TCP; a TOOL.CND with ///CRC is refused (exit 2,
+file:line:col): its checksum cannot be recomputed."""
 from __future__ import annotations
 
 import sys
@@ -53,7 +60,8 @@ from ..output import emit_json
 
 def add_arguments(p) -> None:
     p.add_argument("file", metavar="FILE",
-                   help="RAPID module, KRL .dat file, FANUC TP program (.ls) or sysframe.va")
+                   help="RAPID module, KRL .dat file, FANUC TP program (.ls), sysframe.va, "
+                        "UFRAME.CND or TOOL.CND")
     p.add_argument("--frame", required=True, metavar="NAME",
                    help="frame to patch (wobj1, wobj1.oframe, tool1, BASE_DATA[3], UF1, UT2 "
                         "or its label)")
@@ -61,7 +69,8 @@ def add_arguments(p) -> None:
     src.add_argument("--measured", metavar="SOLUTION.json",
                      help="the solution written by `ucsio solve -o` (the UCS in robot world)")
     src.add_argument("--set", metavar="X,Y,Z,A,B,C",
-                     help="values in mm and degrees (KUKA A, B, C; FANUC: A=R, B=P, C=W)")
+                     help="values in mm and degrees (KUKA A, B, C; FANUC: A=R, B=P, C=W; "
+                          "Yaskawa: A=rz, B=ry, C=rx)")
     src.add_argument("--set-q", metavar="X,Y,Z,Q1,Q2,Q3,Q4", help="values in mm and an ABB quaternion")
     p.add_argument("--oframe", action="store_true", help="ABB: patch the object frame of the wobj")
     p.add_argument("--force", action="store_true",

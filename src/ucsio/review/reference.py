@@ -40,8 +40,15 @@ def measured_in_parent(cf: ControllerFile, frame: Frame, world: Pose) -> Pose:
     return world
 
 
+# a frame these parents hold is fixed in robot world: a robot's base is the
+# world it keeps fixed (a measured solution is in it)
+FIXED_PARENTS = ("world", "robot")
+
+
 def _uframe_words(uframe: Frame) -> str:
-    """Why an ABB user frame is not a fixed frame in robot world."""
+    """Why a user frame is not a fixed frame in robot world."""
+    if uframe.parent.kind == "frame":
+        return f"it is defined on {uframe.parent.name} in turn"
     if uframe.info.get("ufprog") is False:
         return f"the controller moves it: ufprog FALSE, ufmec {uframe.info.get('ufmec')!r}"
     if uframe.reference == "wrist":
@@ -54,7 +61,9 @@ def object_frame_basis(cf: ControllerFile, frame: Frame) -> str | None:
     but has a value: how a measured frame is put into it (what --force
     writes and diff compares), naming that user frame's values; else None."""
     uframe = _parent_frame(cf, frame)
-    if uframe is None or uframe.parent.kind == "world" or uframe.pose is None:
+    # a user frame on another frame: uframe^-1 * world would leave that one out
+    if uframe is None or uframe.parent.kind in FIXED_PARENTS + ("frame",) \
+            or uframe.pose is None:
         return None
     p = uframe.pose
     a, b, c = p.abc
@@ -77,18 +86,20 @@ def reference_problem(cf: ControllerFile, frame: Frame) -> str | None:
         return None
     if frame.parent.kind == "frame":
         uframe = _parent_frame(cf, frame)
-        if uframe is not None and uframe.parent.kind == "world" and uframe.pose is not None:
+        if uframe is not None and uframe.parent.kind in FIXED_PARENTS \
+                and uframe.pose is not None:
             return None
         if uframe is None or uframe.pose is None:
-            return ("the object frame is relative to a user frame with no literal value: a "
+            return ("this frame is relative to a user frame with no literal value: a "
                     "measured world frame cannot be expressed in it")
-        return ("the object frame is relative to a user frame that is not a fixed frame "
+        return ("this frame is relative to a user frame that is not a fixed frame "
                 f"in robot world ({_uframe_words(uframe)})")
     if ref == "flange":
         return ("this tool is held by the robot: its frame is relative to the flange, not world "
                 "(a TCP solved with `solve --tcp solve` is what can be written here)")
     if ref == "machine":
-        return "this base is on an external kinematic (MACHINE_FRAME_DAT): not relative to world"
+        return (f"this frame moves with {frame.parent.name} (an external kinematic or "
+                "another robot's tool): not relative to world")
     if ref == "wrist":
         return "robhold TRUE: the robot holds this work object (stationary tool); " \
                "its user frame is relative to the wrist"

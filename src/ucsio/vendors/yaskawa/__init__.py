@@ -33,11 +33,23 @@ class Yaskawa(Defaults):
     # none yet: jobs (.JBI) are not read
 
     # -- writing frames and programs (patch, program) -----------------------------------
-    # patch: not yet (a TOOL.CND's ///CRC cannot be recomputed): review.patch refuses
-    # a frame whose vendor has no plan_changes (the default), saying so
+    # patch rewrites a ////BUSER line or a tool's pose line in place; a TOOL.CND
+    # with ///CRC is refused (its checksum cannot be recomputed)
     native_keys = ("x", "y", "z", "rx", "ry", "rz")
     same_rotation_tolerance = 0.25e-4   # deg: a quarter of the 4 decimals it writes
     readback_angle = 5e-4
+
+    def plan_changes(self, frame, pose):
+        from .write import plan
+        return plan(frame, pose)
+
+    def translation_changes(self, frame, pose):
+        from .write import translation
+        return translation(frame, pose)
+
+    def check_patchable(self, cf, frame, where, warnings):
+        from .write import check_patchable
+        check_patchable(cf, frame, where, warnings)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # no taught points yet: jobs (.JBI) are not read
