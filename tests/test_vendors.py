@@ -205,6 +205,21 @@ def test_a_vendor_without_a_reader_of_taught_points_says_so(tmp_path, kuka_as):
     assert re.search(r"\$config\.dat:\d+", err), err
 
 
+def test_a_vendor_without_a_frame_writer_says_so_and_writes_nothing(tmp_path, kuka_as):
+    import shutil
+    config = tmp_path / "$config.dat"
+    shutil.copy(KUKA_CONFIG, config)
+    before = config.read_bytes()
+    kuka_as(plan_changes=None)
+    code, out, err = run("patch", config, "--frame", "weld_fixture", "--measured",
+                         _measured(tmp_path))
+    assert code == 2 and out == ""
+    assert re.search(r"\$config\.dat:\d+:1: \S+: KUKA has no frame writer yet: nothing written",
+                     err), err
+    assert config.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["$config.dat", "solution.json"]
+
+
 def test_a_frames_own_deltas_are_its_vendors(tmp_path, kuka_as):
     args = ("diff", KUKA_CONFIG, "--frame", "weld_fixture", "--measured", _measured(tmp_path),
             "--json")
