@@ -54,10 +54,10 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
     ("JOB1.JBI", "/JOB\r\n//NAME JOB1\r\n//POS\r\n///NPOS 0,0,0,0,0,0\r\n", "Yaskawa Motoman job"),
     # the suffixes are ABB's and KUKA's: the first line says whose they are
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n", "Yaskawa Motoman file"),
-    ("VAR.DAT", "//VAR\r\n///PFNUM 6,0,0,0\r\n", "Yaskawa Motoman file"),
+    ("VAR.DAT", "//VAR\r\n///PFNUM 6,0,0,0\r\n", "Yaskawa global variable file (VAR.DAT)"),
     # a condition file other than UFRAME.CND and TOOL.CND: its first line says so
     ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n", "Yaskawa Motoman file"),
-    ("RBCALIB.DAT", "//RBCALIB\r\n///MTOOL 0\r\n", "Yaskawa Motoman file"),
+    ("RBCALIB.DAT", "//RBCALIB\r\n///MTOOL 0\r\n", "Yaskawa robot-to-robot calibration (RBCALIB.DAT)"),
 ])
 def test_another_controllers_file_named_on_its_own(tmp_path, capsys, name, text, what):
     path = tmp_path / name

@@ -243,3 +243,13 @@ def test_which_frames_can_be_unset_is_the_vendors(kuka_as):
     assert is_set(blank, cf)
     kuka_as(default_label=lambda self, frame, label: label == "gripper")
     assert not is_set(named, cf)
+
+
+def test_first_words_claim_a_file_whatever_its_suffix():
+    """Yaskawa's RBCALIB.DAT and VAR.DAT end as KUKA's data lists do: their
+    first line decides (registry Entry.heads), a whole word only."""
+    assert vendors.claimed("//RBCALIB 1\r\n///MTOOL 2\r\n") == "yaskawa"
+    assert vendors.claimed("\ufeff//VAR\r\n///PFNUM 6,0,0,0\r\n") == "yaskawa"
+    assert vendors.claimed("//VARIABLES\r\n") is None
+    assert vendors.claimed("&ACCESS RVP\r\nDEFDAT $CONFIG\r\n") is None
+    assert vendors.claimed("") is None

@@ -31,6 +31,8 @@ from . import regex
 # where it is another condition file.
 KNOWN = (
     ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
+    ("a Yaskawa robot-to-robot calibration (RBCALIB.DAT)", "Yaskawa", (), r"//RBCALIB\b"),
+    ("a Yaskawa global variable file (VAR.DAT)", "Yaskawa", (), r"//VAR\b"),
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",), r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b)[A-Z]+"),
     ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
     ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),

@@ -25,16 +25,21 @@ class Entry:
     shown, the suffixes of the files it reads, those of them a backup's
     folders and archives are searched for, and its package."""
 
-    __slots__ = ("name", "title", "suffixes", "in_backups", "package", "grammars", "fallback")
+    __slots__ = ("name", "title", "suffixes", "in_backups", "package", "grammars", "fallback",
+                 "heads")
 
     def __init__(self, name: str, title: str, suffixes: tuple[str, ...],
                  in_backups: tuple[str, ...], package: str,
-                 grammars: tuple[tuple[str, tuple[str, ...]], ...], fallback: bool = False):
+                 grammars: tuple[tuple[str, tuple[str, ...]], ...], fallback: bool = False,
+                 heads: tuple[str, ...] = ()):
         self.name, self.title, self.suffixes = name, title, suffixes
         self.in_backups, self.package, self.fallback = in_backups, package, fallback
         # (grammars/NAME.lark, start symbols) of each parser its package runs:
         # the wheel ships their LALR tables (hatch_build.py)
         self.grammars = grammars
+        # first words that make a file this vendor's whatever its suffix says
+        # (Yaskawa's RBCALIB.DAT and VAR.DAT end as KUKA's data lists do)
+        self.heads = heads
 
 
 # A file of unknown suffix is sniffed by each vendor in this order; the
@@ -48,9 +53,11 @@ VENDORS = (
           (("krl", ("file",)),), fallback=True),
     Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc",
           (("va", ("file",)), ("tp", ("file",)))),
-    # UFRAME.CND and TOOL.CND, read line by line (no grammar); the rest of a
-    # Yaskawa backup is refused by parsing.foreign
-    Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", ()),
+    # read line by line (no grammar): UFRAME.CND, TOOL.CND, jobs, and the
+    # RBCALIB.DAT and VAR.DAT a backup's .dat search finds (claimed by their
+    # first line); what ucsio does not read yet is refused by parsing.foreign
+    Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", (),
+          heads=("//RBCALIB", "//VAR")),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
@@ -141,9 +148,21 @@ def by_suffix(path: str) -> str | None:
     return None
 
 
+def claimed(text: str) -> str | None:
+    """The vendor whose first words ``text`` begins with, whatever the
+    file's suffix says (``Entry.heads``), or None."""
+    head = text[:64].lstrip("\ufeff \t\r\n")
+    for e in VENDORS:
+        for word in e.heads:
+            if head.startswith(word) and not head[len(word):len(word) + 1].isalnum():
+                return e.name
+    return None
+
+
 def detect(doc) -> str:
-    """The vendor of a document: by its suffix, else by its first words."""
-    name = by_suffix(doc.path)
+    """The vendor of a document: by its first line where a vendor claims
+    it, else by its suffix, else by its first words."""
+    name = claimed(doc.text) or by_suffix(doc.path)
     if name is not None:
         return name
     for e in VENDORS:
