@@ -54,6 +54,14 @@ class Yaskawa(Defaults):
         from .write import check_patchable
         check_patchable(cf, frame, where, warnings)
 
+    # ``ucsio program -o SETUF2.JBI``: a job that sets a user frame by MFRAME from
+    # three positions it loads into free P variables (``program``)
+    program_options = ("group", "p", "var")
+
+    def frame_program(self, data, path, frame, *, output=None, **options):
+        from .program import from_solution
+        return from_solution(data, path, frame, output=output, **options)
+
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # no taught points yet: jobs (.JBI) are not read
 
