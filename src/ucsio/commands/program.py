@@ -80,7 +80,7 @@ def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None
     suffix the vendor unless ``vendor`` does)."""
     from .. import vendors
     from ..errors import UcsioError, UsageError
-    from ..method.solution import read_json
+    from ..method.solution import pose_from_json, read_json, solved_tcp
     from .patch import parse_values
     name = vendors.program_vendor(output, vendor)
     writer = vendors.get(name)
@@ -98,7 +98,9 @@ def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None
                              + _whose(option))
     path = None if isinstance(solution, dict) else str(solution)
     data = solution if path is None else read_json(path)
-    return writer.frame_program(data, path, frame, output=output, **given)
+    pose = pose_from_json(data, path)
+    return writer.frame_program(pose, frame, tcp=solved_tcp(data, path), source=path,
+                                output=output, **given)
 
 
 def _whose(option: str) -> str:

@@ -82,7 +82,7 @@ class Vendor(Protocol):
     review_copy_warning: str | None     # what a patched reviewed copy warns
     # (pose, frame, folder, pr=, posreg=) -> a program that sets a listing's frame
     program_writer: Callable[..., Any] | None
-    # ``ucsio program``: (solution data, its path, frame, output=, **options) -> a
+    # ``ucsio program``: (pose, frame, tcp=, source=, output=, **options) -> a
     # program made, not written (``data`` bytes, ``warnings``, ``as_dict()``,
     # ``summary()``, ``written``); None: "X has no program writer yet". Its
     # suffixes are the registry's ``Entry.programs``.

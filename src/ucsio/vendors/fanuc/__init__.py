@@ -105,9 +105,9 @@ class Fanuc(Defaults):
     # ``ucsio program``: a TP program (.LS) that sets a measured frame
     program_options = ("group", "pr", "posreg", "comment", "wpr")
 
-    def frame_program(self, data, path, frame, *, output=None, **options):
+    def frame_program(self, pose, frame, **options):
         from .program import from_solution
-        return from_solution(data, path, frame, output=output, **options)
+        return from_solution(pose, frame, **options)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):

@@ -204,15 +204,12 @@ def make_program(pose: Pose, kind: str, number: int, group: int, pr: int, *,
     return "\r\n".join(lines) + "\r\n"
 
 
-def from_solution(data, path: str | None, frame: str, *, output: str | None = None,
-                  group: int | None = None, pr: int | None = None, posreg: str | None = None,
-                  comment: str | None = None,
+def from_solution(pose: Pose, frame: str, *, tcp=None, source: str | None = None,
+                  output: str | None = None, group: int | None = None, pr: int | None = None,
+                  posreg: str | None = None, comment: str | None = None,
                   wpr: tuple[float, float, float] | None = None) -> ProgramResult:
     """``ucsio program``'s FANUC program (the vendor's ``frame_program``):
-    ``data`` a SOLUTION.json's data (read from ``path``, None for a dict)."""
-    from ...method.solution import pose_from_json, solved_tcp
-    pose = pose_from_json(data, path)
-    tcp = solved_tcp(data, path)
+    ``pose`` the solution's frame, ``tcp`` its solved TCP (None: given)."""
     return program(pose, frame, group=group, pr=pr, comment=comment, posreg=posreg,
                    out=output, tcp=tcp, wpr=wpr)
 

@@ -58,9 +58,9 @@ class Yaskawa(Defaults):
     # three positions it loads into free P variables (``program``)
     program_options = ("group", "p", "var")
 
-    def frame_program(self, data, path, frame, *, output=None, **options):
+    def frame_program(self, pose, frame, **options):
         from .program import from_solution
-        return from_solution(data, path, frame, output=output, **options)
+        return from_solution(pose, frame, **options)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # no taught points yet: jobs (.JBI) are not read

@@ -109,18 +109,18 @@ class JobResult(Value):
                 "pose": dict(self.values), "warnings": list(self.warnings), "text": self.text}
 
 
-def from_solution(data, path: str | None, frame: str, *, output: str | None = None,
-                  group: int | None = None, p: int | None = None,
+def from_solution(pose: Pose, frame: str, *, tcp=None, source: str | None = None,
+                  output: str | None = None, group: int | None = None, p: int | None = None,
                   var: str | None = None) -> JobResult:
-    """``ucsio program``'s Yaskawa job (the vendor's ``frame_program``)."""
-    from ...method.solution import pose_from_json
+    """``ucsio program``'s Yaskawa job (the vendor's ``frame_program``):
+    ``pose`` the solution's frame (a tool's ``tcp`` has no job yet),
+    ``source`` the SOLUTION.json it came from (None: standard input or data)."""
     number, g = parse_frame(frame, group)
-    pose = pose_from_json(data, path)
     name = job_name(output, number)
     warnings: list[str] = []
     numbers, p_from = choose_p(p, var, warnings)
     points = three_points(pose)
-    source = "<stdin>" if path in (None, "-") else os.path.basename(path)
+    source = "standard input" if source in (None, "-") else os.path.basename(source)
     text = make_job(name, number, g, numbers, points, source)
     values = _read_back(text, pose, f"UF{number}")
     return JobResult(text=text, name=name, frame=f"UF{number}", number=number, group=g,
@@ -206,13 +206,12 @@ def backup_use(var: str, warnings: list[str]) -> tuple[dict[int, tuple], int]:
     """{P number: (file, line, what)}: where each P variable is used, from ``var`` (a VAR.DAT: its rows that
     are not "UNUSED") and every job (.JBI) in its folder, and how many P
     variables the controller has (VAR.DAT's rows)."""
-    from ...parsing.controller import parse
     from ...parsing.document import Document
     from . import var as var_dat
     doc = Document.read(var)
     if not var_dat.sniff(doc):
         raise UcsioError("--var: not a VAR.DAT (its first line is not //VAR)", file=var)
-    cf = parse(doc)
+    cf = var_dat.parse(doc)
     rows = cf.extra["p_variables"]
     used = {r.number: (var, r.line, f"a {r.kind or 'row'} row of the VAR.DAT")
             for r in rows if r.in_use}
