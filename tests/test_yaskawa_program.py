@@ -212,6 +212,13 @@ def test_no_free_p_variables_is_an_error(tmp_path, capsys):
     assert not target.exists()
 
 
+def test_a_var_dat_without_p_rows_is_an_error(tmp_path, capsys):
+    var = backup(tmp_path, b"//VAR\r\n///B\r\n0,0\r\n")
+    code, out, err = cli(capsys, "program", solution(tmp_path), "--frame", "UF1", "--var", var,
+                         "--vendor", "yaskawa")
+    assert code == 2 and "has no ///P rows" in err and out == ""
+
+
 def test_an_indirect_p_variable_is_warned_about(tmp_path, capsys):
     job = JOB.replace(b"SFTON P005", b"MOVJ P[I000]")
     var = backup(tmp_path, var_dat(*"U" * 10), ("PICK.JBI", job))

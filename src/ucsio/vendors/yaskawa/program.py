@@ -203,9 +203,9 @@ def free_p(used: dict[int, tuple], count: int, var: str | None) -> list[int]:
 
 
 def backup_use(var: str, warnings: list[str]) -> tuple[dict[int, tuple], int]:
-    """{P number: (file, line, what)}: where each P variable is used, from ``var`` (a VAR.DAT: its rows that
-    are not "UNUSED") and every job (.JBI) in its folder, and how many P
-    variables the controller has (VAR.DAT's rows)."""
+    """{P number: (file, line, what)}: where each P variable is used, from
+    ``var`` (a VAR.DAT: its rows that are not "UNUSED") and every job (.JBI)
+    in its folder, and how many P variables the controller has (its rows)."""
     from ...parsing.document import Document
     from . import var as var_dat
     doc = Document.read(var)
@@ -213,6 +213,9 @@ def backup_use(var: str, warnings: list[str]) -> tuple[dict[int, tuple], int]:
         raise UcsioError("--var: not a VAR.DAT (its first line is not //VAR)", file=var)
     cf = var_dat.parse(doc)
     rows = cf.extra["p_variables"]
+    if not rows:
+        raise UcsioError("--var: this VAR.DAT has no ///P rows: which P variables the "
+                         "controller has is not known; give --p N", file=var)
     used = {r.number: (var, r.line, f"a {r.kind or 'row'} row of the VAR.DAT")
             for r in rows if r.in_use}
     for job in jobs_beside(var):
