@@ -1,8 +1,8 @@
 """Files ucsio recognises and does not read (issue 24 points 3 and 8).
 
 - Another controller's file named on its own (a Yaskawa .JBI, its
-  SYSTEM.SYS and VAR.DAT whose suffixes are ABB's and KUKA's, a .CND other
-  than UFRAME.CND and TOOL.CND, which ucsio reads, a Stäubli
+  SYSTEM.SYS whose suffix is ABB's, a .CND other than UFRAME.CND and
+  TOOL.CND, which ucsio reads (as it reads VAR.DAT), a Stäubli
   .dtx, a Universal Robots .installation) is refused with what it is, exit
   2, never "syntax error at 1:1"; in a folder it is listed as not read.
 - A FANUC backup's own .DAT files (ORDERFIL.DAT, UPDATES.DAT:
@@ -24,13 +24,15 @@ from ucsio.cli import main
 DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
-# (Yaskawa's UFRAME.CND and TOOL.CND are read: tests/test_yaskawa.py)
+# (Yaskawa's UFRAME.CND and TOOL.CND are read: tests/test_yaskawa.py; its
+# VAR.DAT: tests/test_yaskawa_var.py)
 FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
                  for p in (CORPUS / vendor).iterdir()
-                 if p.suffix not in (".md", ".tsv") and ".CND" not in p.name.upper())
+                 if p.suffix not in (".md", ".tsv") and ".CND" not in p.name.upper()
+                 and not p.name.upper().endswith("VAR.DAT"))
 # what a refusal says of the vendor's files
 NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "
-                       "UFRAME.CND and TOOL.CND)",
+                       "UFRAME.CND, TOOL.CND and VAR.DAT)",
             "staubli": "does not read Stäubli files yet",
             "ur": "does not read Universal Robots files yet"}
 
@@ -54,7 +56,6 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
     ("JOB1.JBI", "/JOB\r\n//NAME JOB1\r\n//POS\r\n///NPOS 0,0,0,0,0,0\r\n", "Yaskawa Motoman job"),
     # the suffixes are ABB's and KUKA's: the first line says whose they are
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n", "Yaskawa Motoman file"),
-    ("VAR.DAT", "//VAR\r\n///PFNUM 6,0,0,0\r\n", "Yaskawa global variable file (VAR.DAT)"),
     # a condition file other than UFRAME.CND and TOOL.CND: its first line says so
     ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n", "Yaskawa Motoman file"),
     ("RBCALIB.DAT", "//RBCALIB\r\n///MTOOL 0\r\n", "Yaskawa robot-to-robot calibration (RBCALIB.DAT)"),
@@ -71,12 +72,15 @@ def test_another_controllers_file_named_on_its_own(tmp_path, capsys, name, text,
 
 def test_another_controllers_files_in_a_folder_are_listed_not_read(tmp_path, capsys):
     (tmp_path / "SYSTEM.SYS").write_bytes(b"/SYSTEM 8\r\n")
-    (tmp_path / "VAR.DAT").write_bytes(b"//VAR\r\n")
+    (tmp_path / "VAR.DAT").write_bytes(b"//VAR\r\n///P\r\n\"UNUSED\"\r\n")
     (tmp_path / "base.dat").write_bytes(KRL_DAT)
     code, out, err = cli(capsys, "check", tmp_path, "--json")
     doc = json.loads(out)
     assert code == 0, err
-    assert {r["file"].rpartition("/")[2] for r in doc["not_read"]} == {"SYSTEM.SYS", "VAR.DAT"}
+    assert {r["file"].rpartition("/")[2] for r in doc["not_read"]} == {"SYSTEM.SYS"}
+    # VAR.DAT is read as Yaskawa's by its first line, base.dat as KUKA's
+    assert {r["file"].rpartition("/")[2]: r["vendor"] for r in doc["files"]} == \
+        {"VAR.DAT": "yaskawa", "base.dat": "kuka"}
     assert all("Yaskawa" in r["reason"] for r in doc["not_read"]) and doc["errors"] == []
 
 

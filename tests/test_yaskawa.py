@@ -283,7 +283,9 @@ def test_bad_input_is_one_error_at_its_place(tmp_path, capsys, text, where, word
 def test_other_yaskawa_files_are_refused_saying_which_are_read(tmp_path, capsys, name, text):
     path = write(tmp_path, name, text.encode())
     code, out, err = cli(capsys, "frames", path)
-    assert code == 2 and "of Yaskawa's files it reads UFRAME.CND and TOOL.CND" in err
+    assert code == 2 and "of Yaskawa's files it reads " in err
+    reads = err.partition("of Yaskawa's files it reads ")[2]
+    assert all(name in reads for name in ("UFRAME.CND", "TOOL.CND", "VAR.DAT")), err
 
 
 # -- commands --------------------------------------------------------------------------------

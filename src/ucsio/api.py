@@ -317,19 +317,21 @@ def save(result: PatchOutput | PatchResult, path: PathLike | None = None,
 
 def program(solution: Any, frame: str, *, group: int | None = None, pr: int | None = None,
             posreg: PathLike | None = None, comment: str | None = None,
-            wpr: str | Sequence[float] | None = None,
+            wpr: str | Sequence[float] | None = None, p: int | None = None,
+            var: PathLike | None = None, vendor: str | None = None,
             output: PathLike | None = None) -> ProgramOutput:
-    """``ucsio program --json``: a FANUC TP program that sets ``frame``
-    (``UF3``, ``UT2``, ``UF3@2``) to a measured ``solution`` (a solve
-    result, a SOLUTION.json's path, or its data; ``UTk``: its solved TCP,
-    with the tool's ``wpr``, default 0, 0, 0). ``pr``: the position
-    register, else the highest one ``posreg`` (a posreg.va) shows unused.
-    ``comment``: ``UFRAME[k:comment]``. The program is read back through
-    ucsio's TP grammar before it is returned (``out.text``, CRLF); with
-    ``output`` it is also written there (atomically; its file name is the
-    program's name)."""
+    """``ucsio program --json``: a program that sets ``frame`` to a measured
+    ``solution`` (a solve result, a SOLUTION.json's path, or its data): a
+    FANUC TP program (``UF3``, ``UT2``, ``UF3@2``; ``UTk``: its solved TCP,
+    with the tool's ``wpr``, default 0, 0, 0; ``pr``: the position register,
+    else the highest one ``posreg`` (a posreg.va) shows unused; ``comment``:
+    ``UFRAME[k:comment]``) or a Yaskawa job (``UFk``; ``p``: its first P
+    variable, else three that ``var`` (a VAR.DAT) and the jobs beside it do
+    not use). ``vendor`` names whose, else ``output``'s suffix (.LS, .JBI),
+    else FANUC. The program is read back before it is returned (``out.text``,
+    CRLF); with ``output`` it is also written there (atomically; its file
+    name is the program's name)."""
     from .commands import program as command
-    from .vendors.fanuc.program import save as _save
     if isinstance(solution, (str, os.PathLike)):
         data: Any = os.fspath(solution)
     elif isinstance(solution, dict):
@@ -341,9 +343,10 @@ def program(solution: Any, frame: str, *, group: int | None = None, pr: int | No
     angles = None if wpr is None else wpr if isinstance(wpr, str) else tuple(wpr)
     made = command.make(data, frame, group=group, pr=pr,
                         posreg=None if posreg is None else os.fspath(posreg), comment=comment,
-                        wpr=angles, output=None if output is None else os.fspath(output))
+                        wpr=angles, p=p, var=None if var is None else os.fspath(var),
+                        vendor=vendor, output=None if output is None else os.fspath(output))
     if output is not None:
-        _save(made, os.fspath(output))
+        command.save(made, os.fspath(output))
     return _document(ProgramOutput, command.document(made))
 
 

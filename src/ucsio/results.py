@@ -609,20 +609,25 @@ class PatchOutput(Result):
 
 
 class ProgramValues(Result):
-    """The frame as the program sets it: ``x y z`` (mm), FANUC ``w p r`` (deg)."""
+    """The frame as the program sets it: ``x y z`` (mm), FANUC ``w p r`` or
+    Yaskawa ``rx ry rz`` (deg)."""
     x: float
     y: float
     z: float
     w: float
     p: float
     r: float
+    rx: float
+    ry: float
+    rz: float
 
 
 class ProgramInfo(Result):
-    """A FANUC TP program that sets a frame: its ``text`` (CRLF), ``name``
-    (/PROG), the ``frame`` (UF3, UT2, UF3@2) with its ``type`` (UFRAME,
-    UTOOL), ``number`` and ``group``, the register ``pr`` and ``pr_from``
-    ("--pr" or the posreg.va it was found unused in), the ``comment``, the
+    """A program that sets a frame: its ``text`` (CRLF), ``name``
+    (/PROG, //NAME), the ``frame`` (UF3, UT2, UF3@2) with its ``type`` (UFRAME,
+    UTOOL), ``number`` and ``group``; FANUC: the register ``pr`` and ``pr_from``
+    ("--pr" or the posreg.va it was found unused in), the ``comment``;
+    Yaskawa: the P variables ``p`` and ``p_from`` ("--p" or the VAR.DAT); the
     ``pose`` it reads back as (``x y z w p r``), ``warnings``, and the ``file`` written
     (None on standard output)."""
     file: str | None
@@ -633,6 +638,8 @@ class ProgramInfo(Result):
     group: int
     pr: int
     pr_from: str
+    p: list[int]
+    p_from: str
     comment: str | None
     pose: ProgramValues
     warnings: list[str]

@@ -1,33 +1,44 @@
-"""Write a FANUC TP program that sets a measured frame. The controller does
-not load .va listings; a frame reaches it through a program.
+"""Write a program that sets a measured frame on the controller: a FANUC
+TP program (-o OUT.LS) or a Yaskawa job (-o SETUF2.JBI). -o's suffix picks
+the vendor (--vendor NAME where it does not; FANUC where neither says).
 
-SOLUTION.json is what `ucsio solve -o` wrote (- reads standard input). The
-program: /PROG, /ATTR, /MN with a MESSAGE and a PAUSE (read it, then run the
+SOLUTION.json is what `ucsio solve -o` wrote (- reads standard input).
+
+FANUC: /PROG, /ATTR, /MN with a MESSAGE and a PAUSE (read it, then run the
 program once in T1), PR[N]=LPOS-LPOS, the six PR[N,i]= values (X Y Z W P R
 to 0.001 mm and 0.001 deg, negatives in parentheses, no leading zero, as the
 controller writes), UFRAME[k:comment]=PR[N] (UTOOL[k] for UTk), /POS, /END,
 CRLF line endings. Load it as a .TP (ASCII upload or Roboguide).
-
 --frame UFk writes the solution's frame (the UCS in robot world). UTk
 writes the TCP of a solution whose TCP was solved (`solve --tcp solve`),
 with W, P, R from --wpr (default 0, 0, 0); a solution whose TCP was given
 is refused. --group g (or UFk@g) makes g the program's DEFAULT_GROUP.
-
 The register: --pr N, or --posreg posreg.va, from which the highest-numbered
 register that is Uninitialized and has no comment in every group is taken
 (a register is one for all groups); with both, a PR[N] that the listing
 shows in use (a value or a comment, in any group) is refused;
 with neither, an error. Check that no program of the cell uses it.
 
-Without -o the program goes to standard output; -o OUT.LS writes it
-atomically (the program is named after OUT: SET_UF3.LS is /PROG SET_UF3).
-Before anything is written the program is read back through ucsio's TP
-grammar: the frame must give the solution within 0.001 mm and 0.001 deg.
+Yaskawa (UFk only): a job whose //POS holds three positions of the frame in
+the robot base (ORG, ORG + 200 mm x, ORG + 200 mm y; BASE type, mm to 3
+decimals, the frame's rx, ry, rz to 4) in three global P variables, and
+`MFRAME UF#(k) Pa Pb Pc`. Loading the job writes the P variables; running
+it once sets the frame. The P variables: --p N (N, N+1, N+2), or --var
+VAR.DAT, from which, with every job (.JBI) beside it, three free ones are
+taken (the highest run of three free numbers); both: N..N+2 refused where
+VAR.DAT or a job uses one. --group g: ///GROUP1 RBg.
+
+Without -o the program goes to standard output; -o OUT writes it
+atomically (the program is named after OUT: SET_UF3.LS is /PROG SET_UF3,
+SETUF2.JBI is //NAME SETUF2). Before anything is written the program is
+read back: the frame must give the solution within 0.001 mm and 0.001 deg.
 
 Exit 1, nothing written: a rejected solution (its dataset failed the gate:
 measure again). Exit 2, nothing written: a bad solution, a UTk without a solved
-TCP, no register, a register in use, a comment the pendant cannot hold
-(16 printable ASCII characters, no [ ] : ; quotes)."""
+TCP (a Yaskawa UTk: no tool program yet), no register or P variable, one in
+use, a comment the pendant cannot hold (16 printable ASCII characters, no
+[ ] : ; quotes), an option the vendor's program does not take, a vendor
+without a program writer."""
 from __future__ import annotations
 
 import sys
@@ -48,26 +59,68 @@ def add_arguments(p) -> None:
     p.add_argument("--comment", metavar="TEXT", help="the frame's comment: UFRAME[k:TEXT]")
     p.add_argument("--wpr", metavar="W,P,R",
                    help="UTk: the tool's W, P, R in degrees (default 0,0,0)")
-    p.add_argument("-o", "--output", metavar="OUT.LS",
+    p.add_argument("--p", type=int, default=None, metavar="N",
+                   help="Yaskawa: the job loads its points into P N, N+1, N+2")
+    p.add_argument("--var", metavar="VAR.DAT",
+                   help="Yaskawa: the backup's VAR.DAT: take three P variables that neither it "
+                        "nor a job beside it uses (or check --p)")
+    p.add_argument("--vendor", metavar="NAME", default=None,
+                   help="whose program: fanuc, yaskawa (default: by -o's suffix, .LS FANUC, "
+                        ".JBI Yaskawa; FANUC where it says neither)")
+    p.add_argument("-o", "--output", metavar="OUT.LS|OUT.JBI",
                    help="write the program here (default: standard output)")
 
 
 def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None,
-         wpr=None, output=None):
-    """The program (``vendors.fanuc.program.ProgramResult``; nothing written), for
-    ``run`` and ``ucsio.api.program``. ``solution``: a SOLUTION.json's path
-    (- standard input) or its data (a dict); ``wpr``: "W,P,R" or three
-    numbers; ``output``: where it will go (it names the program)."""
+         wpr=None, p=None, var=None, vendor=None, output=None):
+    """The program (the vendor's ``frame_program`` result; nothing written),
+    for ``run`` and ``ucsio.api.program``. ``solution``: a SOLUTION.json's
+    path (- standard input) or its data (a dict); ``wpr``: "W,P,R" or three
+    numbers; ``output``: where it will go (it names the program, and its
+    suffix the vendor unless ``vendor`` does)."""
+    from .. import vendors
+    from ..errors import UcsioError, UsageError
     from ..method.solution import pose_from_json, read_json, solved_tcp
-    from ..vendors.fanuc.program import program
     from .patch import parse_values
+    name = vendors.program_vendor(output, vendor)
+    writer = vendors.get(name)
+    if writer.frame_program is None:
+        raise UcsioError(vendors.missing(name, "program writer"))
+    angles = tuple(parse_values(wpr, 3, "--wpr")) if isinstance(wpr, str) else wpr
+    given = {k: v for k, v in (("group", group), ("pr", pr), ("posreg", posreg),
+                               ("comment", comment), ("wpr", angles), ("p", p), ("var", var))
+             if v is not None}
+    for option in given:
+        if option not in writer.program_options:
+            raise UsageError(f"ucsio program: --{option} does not go with a "
+                             f"{vendors.title(name)} program (it takes "
+                             + ", ".join("--" + o for o in writer.program_options) + ")"
+                             + _whose(option))
     path = None if isinstance(solution, dict) else str(solution)
     data = solution if path is None else read_json(path)
     pose = pose_from_json(data, path)
-    tcp = solved_tcp(data, path)
-    angles = tuple(parse_values(wpr, 3, "--wpr")) if isinstance(wpr, str) else wpr
-    return program(pose, frame, group=group, pr=pr, comment=comment, posreg=posreg,
-                   out=output, tcp=tcp, wpr=angles)
+    return writer.frame_program(pose, frame, tcp=solved_tcp(data, path), source=path,
+                                output=output, **given)
+
+
+def _whose(option: str) -> str:
+    """'; --p is for a Yaskawa program: -o NAME.JBI or --vendor yaskawa'."""
+    from .. import vendors
+    for e in vendors.VENDORS:
+        if e.programs and option in vendors.get(e.name).program_options:
+            return (f"; --{option} is for a {e.title} program: -o NAME{e.programs[0].upper()} "
+                    f"or --vendor {e.name}")
+    return ""
+
+
+def save(result, path: str) -> str:
+    """Write a program made by ``make`` atomically (``files.atomic_write``):
+    an existing file is replaced, a symbolic link written through, a folder
+    or a device refused (``files.write_target``)."""
+    from ..files import atomic_write, write_target
+    written, _ = atomic_write(write_target(path), result.data)
+    result.written = written
+    return written
 
 
 def document(result) -> dict:
@@ -77,13 +130,13 @@ def document(result) -> dict:
 
 def run(args) -> int:
     from ..errors import UsageError
-    from ..vendors.fanuc.program import save
 
     if args.output == "-" and args.json:
         raise UsageError("ucsio program: -o - puts the program on stdout; it does not go "
                          "with --json")
     result = make(args.solution, args.frame, group=args.group, pr=args.pr, posreg=args.posreg,
-                  comment=args.comment, wpr=args.wpr, output=args.output)
+                  comment=args.comment, wpr=args.wpr, p=args.p, var=args.var,
+                  vendor=args.vendor, output=args.output)
     for w in result.warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.output and args.output != "-":
@@ -96,9 +149,5 @@ def run(args) -> int:
         sys.stdout.buffer.write(result.data)
         sys.stdout.buffer.flush()
         return 0
-    v = result.values
-    print(f"wrote {result.written}: /PROG {result.name} sets {result.frame} from "
-          f"PR[{result.pr}] ({'chosen: --pr' if result.pr_from == '--pr' else 'unused in ' + result.pr_from})"
-          f"\n  x {v['x']:.3f}  y {v['y']:.3f}  z {v['z']:.3f}  "
-          f"w {v['w']:.3f}  p {v['p']:.3f}  r {v['r']:.3f}", file=sys.stderr)
+    print(result.summary(), file=sys.stderr)
     return 0

@@ -26,12 +26,12 @@ class Entry:
     folders and archives are searched for, and its package."""
 
     __slots__ = ("name", "title", "suffixes", "in_backups", "package", "grammars", "fallback",
-                 "heads")
+                 "heads", "programs")
 
     def __init__(self, name: str, title: str, suffixes: tuple[str, ...],
                  in_backups: tuple[str, ...], package: str,
                  grammars: tuple[tuple[str, tuple[str, ...]], ...], fallback: bool = False,
-                 heads: tuple[str, ...] = ()):
+                 heads: tuple[str, ...] = (), programs: tuple[str, ...] = ()):
         self.name, self.title, self.suffixes = name, title, suffixes
         self.in_backups, self.package, self.fallback = in_backups, package, fallback
         # (grammars/NAME.lark, start symbols) of each parser its package runs:
@@ -40,6 +40,9 @@ class Entry:
         # first words that make a file this vendor's whatever its suffix says
         # (Yaskawa's RBCALIB.DAT and VAR.DAT end as KUKA's data lists do)
         self.heads = heads
+        # the suffixes of the programs `ucsio program -o` writes for it (its
+        # ``frame_program``): -o's suffix picks the vendor without importing one
+        self.programs = programs
 
 
 # A file of unknown suffix is sniffed by each vendor in this order; the
@@ -52,16 +55,19 @@ VENDORS = (
     Entry("kuka", "KUKA", (".dat", ".src", ".sub"), (".dat",), "ucsio.vendors.kuka",
           (("krl", ("file",)),), fallback=True),
     Entry("fanuc", "FANUC", (".va", ".dg", ".ls"), (".va", ".dg", ".ls"), "ucsio.vendors.fanuc",
-          (("va", ("file",)), ("tp", ("file",)))),
+          (("va", ("file",)), ("tp", ("file",))), programs=(".ls",)),
     # read line by line (no grammar): UFRAME.CND, TOOL.CND, jobs, and the
     # RBCALIB.DAT and VAR.DAT a backup's .dat search finds (claimed by their
     # first line); what ucsio does not read yet is refused by parsing.foreign
     Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", (),
-          heads=("//RBCALIB", "//VAR")),
+          heads=("//RBCALIB", "//VAR"), programs=(".jbi",)),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
 BACKUP_SUFFIXES = tuple(s for e in VENDORS for s in e.in_backups)
+# `ucsio program` where neither -o's suffix nor --vendor names a vendor: the
+# first with programs (FANUC's TP programs were the only ones it wrote at first)
+PROGRAM_DEFAULT = next(e.name for e in VENDORS if e.programs)
 GRAMMARS = tuple(g for e in VENDORS for g in e.grammars)
 
 _loaded: dict[str, Vendor] = {}
@@ -105,6 +111,8 @@ class Defaults:
 
     declaration_end = assignments = check_patchable = check_siblings = check_readback = None
     in_place_refusal = review_copy_warning = program_writer = None
+    frame_program = None
+    program_options: tuple[str, ...] = ()
 
     taught_points = None
 
@@ -169,6 +177,27 @@ def detect(doc) -> str:
         if not e.fallback and get(e.name).sniff(doc):
             return e.name
     return next(e.name for e in VENDORS if e.fallback)
+
+
+def program_vendor(out: str | None, name: str | None) -> str:
+    """The vendor whose program ``ucsio program`` writes: ``name``
+    (--vendor), else the one whose programs end as ``out`` (-o) does, else
+    ``PROGRAM_DEFAULT``. An -o suffix of another vendor's programs than
+    ``name`` is an error (the file would not load where its name says)."""
+    from ..errors import UsageError
+    suffix = os.path.splitext(out or "")[1].lower()
+    by_out = next((e.name for e in VENDORS if suffix and suffix in e.programs), None)
+    if name is None:
+        return by_out or PROGRAM_DEFAULT
+    entry = BY_NAME.get(name.lower())
+    if entry is None:
+        raise UsageError(f"ucsio program: --vendor {name!r}: one of "
+                         f"{', '.join(e.name for e in VENDORS)}")
+    if by_out is not None and by_out != entry.name:
+        raise UsageError(f"ucsio program: -o {out} is a {title(by_out)} program's name; "
+                         f"--vendor {entry.name} writes {title(entry.name)}'s "
+                         f"({', '.join(entry.programs) or 'none yet'})")
+    return entry.name
 
 
 def missing(name: str, what: str) -> str:

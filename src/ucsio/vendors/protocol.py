@@ -82,6 +82,12 @@ class Vendor(Protocol):
     review_copy_warning: str | None     # what a patched reviewed copy warns
     # (pose, frame, folder, pr=, posreg=) -> a program that sets a listing's frame
     program_writer: Callable[..., Any] | None
+    # ``ucsio program``: (pose, frame, tcp=, source=, output=, **options) -> a
+    # program made, not written (``data`` bytes, ``warnings``, ``as_dict()``,
+    # ``summary()``, ``written``); None: "X has no program writer yet". Its
+    # suffixes are the registry's ``Entry.programs``.
+    frame_program: Callable[..., Any] | None
+    program_options: tuple[str, ...]    # the options of `ucsio program` it takes
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a

@@ -102,6 +102,13 @@ class Fanuc(Defaults):
         from .program import write_beside
         return write_beside(pose, frame, folder, pr=pr, posreg=posreg)
 
+    # ``ucsio program``: a TP program (.LS) that sets a measured frame
+    program_options = ("group", "pr", "posreg", "comment", "wpr")
+
+    def frame_program(self, pose, frame, **options):
+        from .program import from_solution
+        return from_solution(pose, frame, **options)
+
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):
         from .taught import find

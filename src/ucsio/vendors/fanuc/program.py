@@ -67,6 +67,14 @@ class ProgramResult(Value):
     def data(self) -> bytes:
         return self.text.encode("ascii")
 
+    def summary(self) -> str:
+        """What ``ucsio program -o`` says it wrote."""
+        v = self.values
+        source = "chosen: --pr" if self.pr_from == "--pr" else "unused in " + self.pr_from
+        return (f"wrote {self.written}: /PROG {self.name} sets {self.frame} from PR[{self.pr}] "
+                f"({source})\n  x {v['x']:.3f}  y {v['y']:.3f}  z {v['z']:.3f}  "
+                f"w {v['w']:.3f}  p {v['p']:.3f}  r {v['r']:.3f}")
+
     def as_dict(self) -> dict[str, Any]:
         return {"file": self.written, "name": self.name, "frame": self.frame, "type": self.type,
                 "number": self.number, "group": self.group, "pr": self.pr,
@@ -194,6 +202,16 @@ def make_program(pose: Pose, kind: str, number: int, group: int, pr: int, *,
         for a in ATTR]
     lines = head + ["/MN"] + [f"{i:4d}:  {s}" for i, s in enumerate(mn, 1)] + ["/POS", "/END"]
     return "\r\n".join(lines) + "\r\n"
+
+
+def from_solution(pose: Pose, frame: str, *, tcp=None, source: str | None = None,
+                  output: str | None = None, group: int | None = None, pr: int | None = None,
+                  posreg: str | None = None, comment: str | None = None,
+                  wpr: tuple[float, float, float] | None = None) -> ProgramResult:
+    """``ucsio program``'s FANUC program (the vendor's ``frame_program``):
+    ``pose`` the solution's frame, ``tcp`` its solved TCP (None: given)."""
+    return program(pose, frame, group=group, pr=pr, comment=comment, posreg=posreg,
+                   out=output, tcp=tcp, wpr=wpr)
 
 
 def program(pose: Pose, frame: str, *, group: int | None = None, pr: int | None = None,

@@ -1,8 +1,8 @@
 """Yaskawa Motoman: user frames (UFRAME.CND) and tools (TOOL.CND).
 
 ``VENDOR`` is what the registry (``ucsio.vendors``) hands generic code; its
-methods import the reader (``cnd``) only when called. Jobs (.JBI),
-RBCALIB.DAT, VAR.DAT and SYSTEM.SYS are not read yet: parsing.foreign
+methods import the reader (``cnd``, ``var`` for VAR.DAT) only when called.
+Jobs (.JBI), RBCALIB.DAT and SYSTEM.SYS are not read yet: parsing.foreign
 refuses them with what ucsio reads of Yaskawa's files.
 """
 from __future__ import annotations
@@ -17,10 +17,13 @@ class Yaskawa(Defaults):
 
     # -- reading --------------------------------------------------------------------
     def sniff(self, doc) -> bool:
-        from .cnd import sniff
-        return sniff(doc)
+        from . import cnd, var
+        return cnd.sniff(doc) or var.sniff(doc)
 
     def parse(self, doc, full: bool = False, beside: bool = True):
+        from . import var
+        if var.sniff(doc):          # //VAR: the global variables (no frames)
+            return var.parse(doc, full=full)
         from .cnd import parse
         return parse(doc, full=full)
 
@@ -50,6 +53,14 @@ class Yaskawa(Defaults):
     def check_patchable(self, cf, frame, where, warnings):
         from .write import check_patchable
         check_patchable(cf, frame, where, warnings)
+
+    # ``ucsio program -o SETUF2.JBI``: a job that sets a user frame by MFRAME from
+    # three positions it loads into free P variables (``program``)
+    program_options = ("group", "p", "var")
+
+    def frame_program(self, pose, frame, **options):
+        from .program import from_solution
+        return from_solution(pose, frame, **options)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # no taught points yet: jobs (.JBI) are not read
