@@ -218,17 +218,3 @@ def test_diff_of_two_backup_folders(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", old, new, "--exit-code")
     assert code == 1 and '~ RBCALIB1 "R2 base in R1 base" (RBCALIB)' in out
 
-
-def test_reading_commands_of_rbcalib_stay_light(tmp_path):
-    """frames, check and diff of an RBCALIB.DAT import none of numpy, scipy, lark."""
-    import subprocess
-    import sys
-    path = write(tmp_path, "RBCALIB.DAT", crlf(rbcalib("1.000,2.000,3.000,0,0,0")))
-    probe = ("import sys, io, contextlib\nfrom ucsio.cli import main\n"
-             "with contextlib.redirect_stdout(io.StringIO()):\n    main(sys.argv[1:])\n"
-             "print(' '.join(m for m in ('numpy', 'scipy', 'lark') if m in sys.modules))")
-    for args in (["frames", path], ["frames", "--tree", path], ["check", path],
-                 ["diff", path, path]):
-        res = subprocess.run([sys.executable, "-c", probe, *map(str, args)],
-                             capture_output=True, text=True, check=True)
-        assert res.stdout.strip() == "", (args, res.stdout)
