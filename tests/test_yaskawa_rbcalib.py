@@ -218,3 +218,29 @@ def test_diff_of_two_backup_folders(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", old, new, "--exit-code")
     assert code == 1 and '~ RBCALIB1 "R2 base in R1 base" (RBCALIB)' in out
 
+
+
+def test_diff_of_tool_cnds_whose_every_crc_changed(capsys):
+    """One tool edit changes every ///CRC line of a TOOL.CND: the diff
+    reports the tools that moved and shows those lines as the text diff
+    (lines changed beyond the frame values), in the corpus's two versions."""
+    before, now = komatsu("TOOL.CND.at-3ec0b394"), komatsu("TOOL.CND")
+    code, out, err = cli(capsys, "diff", before, now)
+    assert code == 0, err
+    assert [ln.split()[1] for ln in out.splitlines() if ln.startswith("~ ")] == [
+        "UT2", "UT3", "UT4"]
+    assert "lines changed beyond the frame values above" in out
+    assert sum(ln.startswith("-///CRC ") for ln in out.splitlines()) == 64
+
+
+def test_diff_of_values_alone_shows_no_text_diff(tmp_path, capsys):
+    from test_yaskawa import TOOLS
+    a = write(tmp_path, "a.CND", TOOLS)
+    b = write(tmp_path, "b.CND", TOOLS.replace(b"365.400", b"365.900"))
+    code, out, err = cli(capsys, "diff", a, b)
+    assert code == 0 and "~ UT0" in out and "dz +0.500" in out
+    assert "lines changed beyond" not in out
+    c = write(tmp_path, "c.CND", TOOLS.replace(b"365.400", b"365.900").replace(b"GUN", b"GUN2"))
+    code, out, err = cli(capsys, "diff", a, c)
+    assert "label: GUN -> GUN2" in out and "lines changed beyond" in out   # ///NAME: not a value
+    assert "-///NAME GUN\r" not in out and "-///NAME GUN" in out and "+///NAME GUN2" in out
