@@ -4,7 +4,8 @@ Two kinds:
 
 - other controllers' files: Yaskawa Motoman's that ucsio does not read yet
   (``.JBI`` jobs, the ``.CND`` condition files other than UFRAME.CND and
-  TOOL.CND, and the ``SYSTEM.SYS``/``VAR.DAT`` of its backups, whose suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
+  TOOL.CND, and the ``SYSTEM.SYS``/``VAR.DAT`` of its backups, whose
+  suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
   (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
   ``.installation``);
 - a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
