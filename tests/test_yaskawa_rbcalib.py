@@ -103,6 +103,14 @@ def test_two_blocks_unknown_lines_and_an_unnamed_robot():
         (29, "angle-range", "warning")]
 
 
+def test_a_block_twice_is_a_warning():
+    text = rbcalib("1.000,2.000,3.000,0,0,0") + rbcalib("4.000,5.000,6.000,0,0,0")
+    cf = read(crlf(text), "RBCALIB.DAT")
+    assert [f.name for f in cf.frames] == ["RBCALIB1", "RBCALIB1"]
+    assert [(lint.line, lint.code) for lint in cf.lints] == [(15, "duplicate-block")]
+    assert "line 1 and here" in cf.lints[0].message
+
+
 @pytest.mark.parametrize("text, where, words", [
     ("//RBCALIB 1\n///MTOOL 2\n", "2:11", "//RBCALIB 1 has no ////SRANG line"),
     ("//RBCALIB 1\n////SRANG 1.000,2.000,x,0,0,0\n", "2:23", "////SRANG: not a number: 'x'"),

@@ -65,11 +65,17 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=VENDOR)
     cf.name_form = is_frame_name
     blocks = _blocks(doc, cf)
+    seen: dict[int, int] = {}
     for block in blocks:
         if block.numbers is None:
             raise doc.error(f"//RBCALIB {block.number} has no ////SRANG line", block.end)
         cf.frames.append(_frame(doc, block))
         _lint_angles(cf, cf.frames[-1])
+        if block.number in seen:
+            cf.lint(doc.line_starts[block.line - 1], "duplicate-block", f"RBCALIB{block.number} "
+                    f"is defined twice (line {seen[block.number]} and here): which one the "
+                    "controller loads is not known")
+        seen.setdefault(block.number, block.line)
     cf.extra["kind"] = "robot-to-robot calibration"
     return cf
 
