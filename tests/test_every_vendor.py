@@ -1,6 +1,6 @@
 """What every registered vendor gets without a test of its own (issue 26,
 docs/architecture.md "Adding a vendor"): each file of its corpus folder with
-one of its suffixes reads, round-trips byte for byte, has each frame number
+one of its suffixes (or a first line it claims) reads, round-trips byte for byte, has each frame number
 at its span, and gives the same frames on the fast path as through the
 whole-file grammar. (Its frames are also held by tests/test_frames_snapshot.py,
 its files are fuzz seeds: tests/fuzzing.py.)"""
@@ -26,9 +26,21 @@ def _params():
                 reason=f"{folder} is absent: the shared corpus is not beside this checkout")))
             continue
         out += [pytest.param(e.name, p, id=f"{e.name}:{p.name[-50:]}")
-                for p in sorted(folder.rglob("*"))
-                if p.is_file() and p.suffix.lower() in e.suffixes]
+                for p in sorted(folder.rglob("*")) if _reads(e, p)]
     return out
+
+
+def _reads(e, path) -> bool:
+    """Whether ``path`` is a file of vendor ``e`` that ucsio reads: by its
+    suffix, or by the first line the vendor claims (Yaskawa's RBCALIB.DAT,
+    in both its versions) where no refusal stands for it yet."""
+    from ucsio.parsing import foreign
+    if not path.is_file() or path.suffix.lower() in (".md", ".tsv"):
+        return False
+    if path.suffix.lower() in e.suffixes:
+        return True
+    head = path.read_bytes()[:512].decode("latin-1")
+    return vendors.claimed(head) == e.name and foreign.other_vendor(path.name, head) is None
 
 
 def _frames(cf) -> list:

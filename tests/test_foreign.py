@@ -24,15 +24,15 @@ from ucsio.cli import main
 DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
-# (Yaskawa's UFRAME.CND and TOOL.CND are read: tests/test_yaskawa.py; its
-# VAR.DAT: tests/test_yaskawa_var.py)
+# (Yaskawa's UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py)
 FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
                  for p in (CORPUS / vendor).iterdir()
                  if p.suffix not in (".md", ".tsv") and ".CND" not in p.name.upper()
+                 and "RBCALIB.DAT" not in p.name.upper()
                  and not p.name.upper().endswith("VAR.DAT"))
 # what a refusal says of the vendor's files
 NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "
-                       "UFRAME.CND, TOOL.CND and VAR.DAT)",
+                       "UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT)",
             "staubli": "does not read Stäubli files yet",
             "ur": "does not read Universal Robots files yet"}
 
@@ -58,7 +58,6 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n", "Yaskawa Motoman file"),
     # a condition file other than UFRAME.CND and TOOL.CND: its first line says so
     ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n", "Yaskawa Motoman file"),
-    ("RBCALIB.DAT", "//RBCALIB\r\n///MTOOL 0\r\n", "Yaskawa robot-to-robot calibration (RBCALIB.DAT)"),
 ])
 def test_another_controllers_file_named_on_its_own(tmp_path, capsys, name, text, what):
     path = tmp_path / name

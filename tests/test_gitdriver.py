@@ -113,3 +113,71 @@ def test_external_diff_never_hides_other_changes(repo):
     path.write_bytes(path.read_bytes().replace(b"v1000, fine", b"v500, fine"))
     out = git(repo, "diff")
     assert "no frame changed" in out and "+        MoveL Offs(pHome,0,0,100), v500, fine" in out
+
+
+# -- Yaskawa: UFRAME.CND, TOOL.CND, RBCALIB.DAT -------------------------------------------
+@pytest.fixture
+def yaskawa_repo(tmp_path):
+    """A Yaskawa backup under git: .CND files and RBCALIB.DAT (CRLF, as the
+    controller writes them), each through the driver by its attributes."""
+    from test_yaskawa import TOOLS, UFRAMES
+    from test_yaskawa_rbcalib import rbcalib
+    from test_yaskawa import crlf
+    r = tmp_path / "yaskawa"
+    (r / "R05").mkdir(parents=True)
+    (r / "R05" / "UFRAME.CND").write_bytes(UFRAMES)
+    (r / "R05" / "TOOL.CND").write_bytes(TOOLS.replace(b"///CRC 3243358777\r\n", b""))
+    (r / "R05" / "RBCALIB.DAT").write_bytes(crlf(rbcalib(
+        "21.194,911.779,30.780,-0.7153,2.0659,-0.4335")))
+    (r / ".gitattributes").write_text("*.CND diff=ucsio\nRBCALIB.DAT diff=ucsio\n")
+    git(r, "init", "-q", ".")
+    git(r, "add", ".")
+    git(r, "commit", "-q", "-m", "backup 1")
+    return r
+
+
+def _move_yaskawa(repo):
+    patch(repo, "R05/UFRAME.CND", "--frame", "UF2", "--set=100.5,20,5,90,0,0")
+    path = repo / "R05" / "RBCALIB.DAT"
+    path.write_bytes(path.read_bytes().replace(b"21.194,911.779,30.780", b"21.194,912.779,30.780"))
+
+
+def test_yaskawa_external_diff_driver(yaskawa_repo):
+    """git hands the old side as a temporary file: its first line says what it is."""
+    git(yaskawa_repo, "config", "diff.ucsio.command", UCSIO)
+    _move_yaskawa(yaskawa_repo)
+    out = git(yaskawa_repo, "diff")
+    assert "ucsio diff a/R05/UFRAME.CND b/R05/UFRAME.CND" in out
+    assert '~ UF2 "FIXTURE" (UFRAME): value changed' in out and "dx +0.500" in out
+    assert "ucsio diff a/R05/RBCALIB.DAT b/R05/RBCALIB.DAT" in out
+    assert '~ RBCALIB1 "R2 base in R1 base" (RBCALIB): value changed' in out
+    assert "dy +1.000" in out and "error" not in out.lower()
+    assert "lines changed beyond the frame values" not in out
+
+
+def test_yaskawa_textconv_driver(yaskawa_repo):
+    git(yaskawa_repo, "config", "diff.ucsio.textconv", f"{UCSIO} --textconv")
+    _move_yaskawa(yaskawa_repo)
+    out = git(yaskawa_repo, "diff")
+    changed = [ln for ln in out.splitlines()
+               if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
+    assert [ln[:9] for ln in changed if ln[1:].startswith(("UF2 ", "RBCALIB1 "))] == [
+        "-RBCALIB1", "+RBCALIB1", "-UF2 UFRA", "+UF2 UFRA"]
+    assert any("y=912.779" in ln for ln in changed if ln.startswith("+RBCALIB1"))
+    assert any("x=100.5" in ln for ln in changed if ln.startswith("+UF2"))
+
+
+@pytest.mark.parametrize("source", ["UFRAME.CND", "TOOL.CND", "RBCALIB.DAT"])
+def test_yaskawa_file_without_a_suffix_is_known_by_its_first_line(yaskawa_repo, source):
+    """A temporary copy under a name that says nothing (as git may hand
+    one over) reads as what it is, for both drivers."""
+    bare = yaskawa_repo / "tmp_Xq1z"
+    shutil.copy(yaskawa_repo / "R05" / source, bare)
+    res = subprocess.run([sys.executable, "-m", "ucsio", "diff", "--textconv", str(bare)],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    first = res.stdout.splitlines()[1].split()
+    assert first[0] in ("UF1", "UT0", "RBCALIB1") and first[1] in ("UFRAME", "TOOL", "RBCALIB")
+    res = subprocess.run([sys.executable, "-m", "ucsio", "diff", str(bare),
+                          str(yaskawa_repo / "R05" / source)], capture_output=True, text=True)
+    assert res.returncode == 0 and "no frame changed" in res.stdout, res.stderr

@@ -95,3 +95,33 @@ def test_compiled_patterns_come_back_from_the_cache(tmp_path):
     store.write_bytes(b"\x00not marshal at all")
     assert run() == first
     assert store.stat().st_size > 1000                 # rebuilt
+
+
+def test_yaskawa_reading_commands_import_nothing_slow(tmp_path):
+    """frames, frames --tree, check, diff and textconv of a Yaskawa
+    UFRAME.CND, TOOL.CND and RBCALIB.DAT: none of numpy, scipy, lark, nor
+    the other slow modules but difflib for a diff of two files, as for
+    every vendor (RBCALIB.DAT's .dat suffix is KUKA's: its first line sends
+    it to Yaskawa's reader, without KUKA's grammar)."""
+    import os
+    group = "1" + ",0" * 31
+    files = {
+        "UFRAME.CND": f"//UFRAME 1\r\n///GROUP {group}\r\n///BASICFRM 1,16,0\r\n"
+                      "////BUSER 1.000,2.000,3.000,0.0000,0.0000,0.0000\r\n",
+        "TOOL.CND": "//TOOL 0\r\n///NAME GUN\r\n0.000,0.000,365.400,0.0000,0.0000,0.0000\r\n",
+        "RBCALIB.DAT": f"//RBCALIB 1\r\n///MTOOL 2\r\n///MGROUP {group}\r\n///SGROUP 0,1\r\n"
+                       "////SRANG -2135.959,-4.939,-6.363,-0.0003,0.3284,-179.9991\r\n"}
+    env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
+    for name, text in files.items():
+        (tmp_path / name).write_bytes(text.encode())
+    # the first run builds the caches
+    subprocess.run([sys.executable, "-m", "ucsio", "check", *files], cwd=tmp_path, env=env,
+                   capture_output=True, check=True)
+    for name in files:
+        path = tmp_path / name
+        for args in (["frames", path], ["frames", "--tree", path], ["check", path],
+                     ["diff", path, path], ["diff", "--textconv", path]):
+            res = subprocess.run([sys.executable, "-c", MODULES_PROBE, *map(str, args)],
+                                 capture_output=True, text=True, env=env, check=True)
+            allowed = ["difflib"] if args[0] == "diff" and len(args) == 3 else []
+            assert res.stdout.split() in ([], allowed), (args, res.stdout)

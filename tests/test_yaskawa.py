@@ -216,12 +216,16 @@ def test_frames_tree_shows_them(tmp_path, capsys):
         (line,) = [ln for ln in lines if f" {name} " in ln or ln.endswith(f" {name}")]
         return line.index(name)
 
-    robot = [ln for ln in lines if ln.rstrip().endswith("── robot")]
-    assert robot and any("robot@2" in ln for ln in lines)
+    # each robot named as ///GROUP's flag names it on the pendant: R1, R2
+    assert any(ln.rstrip().endswith('── robot  "R1"') for ln in lines)
+    assert any(ln.rstrip().endswith('── robot@2  "R2"') for ln in lines)
     assert depth("UF2") > depth("UF1")              # UF2 hangs on UF1
     code, out, err = cli(capsys, "frames", "--tree", path, "--json")
     tree = json.dumps(json.loads(out))
     assert '"kind": "unit"' in tree and "master robot's tool" in tree
+    robots = json.loads(out)["tree"][0]["roots"][0]["children"]
+    assert [(r["name"], r["kind"], r.get("label")) for r in robots[:2]] == [
+        ("robot", "robot", "R1"), ("robot@2", "robot", "R2")]
 
 
 # -- lints --------------------------------------------------------------------------------
@@ -278,14 +282,14 @@ def test_bad_input_is_one_error_at_its_place(tmp_path, capsys, text, where, word
 @pytest.mark.parametrize("name, text", [
     ("JOB1.JBI", "/JOB\r\n//NAME JOB1\r\n"),
     ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n"),
-    ("RBCALIB.DAT", "//RBCALIB\r\n"),
+    ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n"),
 ])
 def test_other_yaskawa_files_are_refused_saying_which_are_read(tmp_path, capsys, name, text):
     path = write(tmp_path, name, text.encode())
     code, out, err = cli(capsys, "frames", path)
     assert code == 2 and "of Yaskawa's files it reads " in err
     reads = err.partition("of Yaskawa's files it reads ")[2]
-    assert all(name in reads for name in ("UFRAME.CND", "TOOL.CND", "VAR.DAT")), err
+    assert all(name in reads for name in ("UFRAME.CND", "TOOL.CND", "RBCALIB.DAT", "VAR.DAT")), err
 
 
 # -- commands --------------------------------------------------------------------------------

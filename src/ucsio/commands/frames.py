@@ -162,16 +162,44 @@ def _node_json(cf_of):
     return frame_keys
 
 
+def robot_titles(cf_of) -> dict[str, str]:
+    """A robot node's name -> how its frames' controller names that robot
+    (Yaskawa's R1, R2: ``robot_title``), where it names it."""
+    from .. import vendors
+    out: dict[str, str] = {}
+    for cf in cf_of.values():
+        for f in cf.frames:
+            if f.parent.kind == "robot" and f.parent.name not in out:
+                at = f.parent.name.find("@")
+                title = vendors.get(f.vendor).robot_title(int(f.parent.name[at + 1:])
+                                                          if at >= 0 else 1)
+                if title is not None:
+                    out[f.parent.name] = title
+    return out
+
+
+def _titled(tree: dict, titles: dict[str, str]) -> dict:
+    """--json's tree with each robot node's title as its label."""
+    if tree["kind"] == "robot" and tree["name"] in titles:
+        tree["label"] = titles[tree["name"]]
+    for child in tree["children"]:
+        _titled(child, titles)
+    return tree
+
+
 def _node_text(cf_of):
     from ..output import paint
     from ..review.unset import is_set
     places = {"unit": " (moves the frames below)",
               "unknown": " (the file does not say what these are relative to)"}
+    titles = robot_titles(cf_of)
 
     def label(node) -> str:
         f = node.frame
         if f is None:
-            return paint(node.name, "head") + places.get(node.kind, "")
+            title = f'  "{titles[node.name]}"' if node.kind == "robot" and \
+                node.name in titles else ""
+            return paint(node.name, "head") + title + places.get(node.kind, "")
         words = [f.name, f.type]
         role = f.info.get("role")
         if role in ("external_tcp", "workpiece"):   # as the listing says it
@@ -194,8 +222,9 @@ def run_tree(args) -> int:
     if args.json:
         parsed = [pc for _, pcs in per_input for pc in pcs]
         doc = document(parsed, errors, not_read)
-        doc["tree"] = [{"input": path, "roots": [as_dict(r, _node_json(cf_of)) for r in roots]}
-                       for path, roots, cf_of in built]
+        doc["tree"] = [{"input": path, "roots": [
+            _titled(as_dict(r, _node_json(cf_of)), robot_titles(cf_of)) for r in roots]}
+            for path, roots, cf_of in built]
         emit_json(doc)
     else:
         for i, (path, roots, cf_of) in enumerate(built):

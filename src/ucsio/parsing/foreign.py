@@ -4,8 +4,8 @@ Two kinds:
 
 - other controllers' files: Yaskawa Motoman's that ucsio does not read yet
   (``.JBI`` jobs, the ``.CND`` condition files other than UFRAME.CND and
-  TOOL.CND, and the ``SYSTEM.SYS``/``RBCALIB.DAT`` of its
-  backups, whose suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
+  TOOL.CND, and the ``SYSTEM.SYS`` of its backups, whose suffix is
+  ABB's: its first line decides), Stäubli VAL3
   (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
   ``.installation``);
 - a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
@@ -27,18 +27,18 @@ from . import regex
 # (what it is, whose files ucsio does not read, suffixes that say it, a
 # pattern its first characters match where its suffix is another vendor's).
 # A Yaskawa .CND is read by its vendor (ucsio.vendors.yaskawa) where it is a
-# UFRAME.CND or TOOL.CND (//UFRAME n, //TOOL n) and refused by its first line
-# where it is another condition file; VAR.DAT (//VAR) is read too.
+# UFRAME.CND or TOOL.CND (//UFRAME n, //TOOL n), as are an RBCALIB.DAT
+# (//RBCALIB n) and a VAR.DAT (//VAR), and refused by its first line where it
+# is another condition file.
 KNOWN = (
     ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
-    ("a Yaskawa robot-to-robot calibration (RBCALIB.DAT)", "Yaskawa", (), r"//RBCALIB\b"),
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",),
-     r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b|VAR\b)[A-Z]+"),
+     r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b|RBCALIB\b|VAR\b)[A-Z]+"),
     ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
     ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
 )
 # what ucsio reads of a vendor's files, where it reads some: the refusal says so
-READS = {"Yaskawa": "UFRAME.CND, TOOL.CND and VAR.DAT"}
+READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else
 _KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")

@@ -28,7 +28,7 @@ from .unset import is_set, warning as unset_warning
 from ..vendors.common.write import close32 as _close32, poses_equal
 from .patch import resolve_name, same_rotation_tolerance
 from .reference import measured_in_parent, object_frame_basis, reference_problem
-from .unified import common_ends, unified_lines
+from .unified import unified_lines
 
 TYPE_CHECKING = False      # typing costs a cold start 5-14 ms; annotations are strings
 if TYPE_CHECKING:
@@ -374,18 +374,12 @@ def _other_lines_changed(old: ControllerFile | None, new: ControllerFile | None,
     reviewer sees its text change rather than nothing)."""
     a, b = _lines(old), _lines(new)
     fa, fb = _frame_lines(old, reported), _frame_lines(new, reported)
-    # the lines both share at the ends are unchanged; the matcher reads the
-    # rest (on all of a listing's equal lines it crawls)
-    lo, hi = common_ends(a, b)
-    import difflib
-
-    matcher = difflib.SequenceMatcher(None, a[lo:len(a) - hi], b[lo:len(b) - hi], autojunk=False)
-    for tag, i1, i2, j1, j2 in matcher.get_opcodes():
-        if tag == "equal":
-            continue
-        if not (set(range(lo + i1, lo + i2)) <= fa and set(range(lo + j1, lo + j2)) <= fb):
-            return True
-    return False
+    # Without the lines of the values reported, the rest must be the same
+    # lines in the same order. (A line matcher crawls on a file of many equal
+    # lines whose changes are spread over it: a TOOL.CND whose 64 ///CRC
+    # lines all change with one tool.)
+    return [ln for i, ln in enumerate(a) if i not in fa] != \
+        [ln for i, ln in enumerate(b) if i not in fb]
 
 
 def plain_diff(path: str, old_file: str, new_file: str) -> str:

@@ -130,6 +130,9 @@ class Defaults:
     def default_label(self, frame, label: str) -> bool:
         return False
 
+    def robot_title(self, group: int) -> str | None:
+        return None
+
     native_deltas: tuple[tuple[str, str], ...] = ()
 
 

@@ -111,6 +111,10 @@ class Vendor(Protocol):
     def default_label(self, frame: Frame, label: str) -> bool:
         """Whether ``label`` is a name the controller gives a frame nobody named."""
 
+    def robot_title(self, group: int) -> str | None:
+        """How the controller names motion group ``group``'s robot (Yaskawa's
+        R2), shown beside its node of the frame tree; None: no name of its own."""
+
     # (own key, SPEC's key) pairs: a frame's deltas in the vendor's terms,
     # added beside SPEC's da, db, dc (FANUC: dw = dc)
     native_deltas: tuple[tuple[str, str], ...]

@@ -1,9 +1,10 @@
-"""Yaskawa Motoman: user frames (UFRAME.CND) and tools (TOOL.CND).
+"""Yaskawa Motoman: user frames (UFRAME.CND), tools (TOOL.CND) and the
+robot-to-robot calibration (RBCALIB.DAT).
 
 ``VENDOR`` is what the registry (``ucsio.vendors``) hands generic code; its
-methods import the reader (``cnd``, ``var`` for VAR.DAT) only when called.
-Jobs (.JBI), RBCALIB.DAT and SYSTEM.SYS are not read yet: parsing.foreign
-refuses them with what ucsio reads of Yaskawa's files.
+methods import the readers (``cnd``, ``rbcalib``, ``var`` for VAR.DAT)
+only when called. Jobs (.JBI) and SYSTEM.SYS are not read yet:
+parsing.foreign refuses them with what ucsio reads of Yaskawa's files.
 """
 from __future__ import annotations
 
@@ -17,11 +18,13 @@ class Yaskawa(Defaults):
 
     # -- reading --------------------------------------------------------------------
     def sniff(self, doc) -> bool:
-        from . import cnd, var
-        return cnd.sniff(doc) or var.sniff(doc)
+        from . import cnd, rbcalib, var
+        return cnd.sniff(doc) or rbcalib.sniff(doc) or var.sniff(doc)
 
     def parse(self, doc, full: bool = False, beside: bool = True):
-        from . import var
+        from . import rbcalib, var  # each file by its first line (a git temporary file has no name)
+        if rbcalib.sniff(doc):
+            return rbcalib.parse(doc, full=full)
         if var.sniff(doc):          # //VAR: the global variables (no frames)
             return var.parse(doc, full=full)
         from .cnd import parse
@@ -70,6 +73,9 @@ class Yaskawa(Defaults):
         controller's default, nobody's tool. UFRAME.CND lists only defined
         user frames."""
         return frame.type == "TOOL"
+
+    def robot_title(self, group: int) -> str | None:
+        return f"R{group}"          # ///GROUP's flag k: the pendant's robot Rk
 
 
 VENDOR = Yaskawa()

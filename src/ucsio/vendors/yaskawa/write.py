@@ -5,7 +5,8 @@ The controller writes every number with fixed decimals (x, y, z to 0.001
 mm, rx, ry, rz to 0.0001 deg, ``-0.0176``, ``0.000``), so a new number
 is written the same way whatever the old one looks like. R = Rz(rz)·Ry(ry)·
 Rx(rx): SPEC's A, B, C are rz, ry, rx. What the patch cannot write: a
-TOOL.CND with a ``///CRC`` line (its checksum is not known), refused.
+TOOL.CND with a ``///CRC`` line (its checksum is not known) and an
+RBCALIB.DAT (the controller's calibration of two robots), refused.
 """
 from __future__ import annotations
 
@@ -65,7 +66,13 @@ def plan(frame: Frame, pose: Pose) -> list[Change]:
 def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: list[str]) -> None:
     """A tool of a TOOL.CND with ``///CRC`` lines is refused at its ///CRC
     line; a user frame is written with the warning that its taught points
-    no longer match it."""
+    no longer match it. RBCALIB.DAT's SRANG is refused: the controller
+    calibrates it from its taught points in both robots."""
+    if frame.type == "RBCALIB":
+        raise UcsioError(f"{frame.name}: RBCALIB.DAT's ////SRANG is the robots' calibration, "
+                         "computed by the controller from the points both robots taught: ucsio "
+                         "does not write it, nothing written (calibrate again on the pendant)",
+                         file=where.get("file"), line=frame.line, col=1)
     if frame.info.get("crc"):
         crc_line = _crc_line(frame)
         raise UcsioError(f"{frame.name}: this TOOL.CND carries a ///CRC checksum that ucsio "
