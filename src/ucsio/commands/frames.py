@@ -91,6 +91,9 @@ def run(args) -> int:
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
         print("no set frames" if unset else "no frames")
+        for _, c in parsed:             # what a file without frames holds instead (a job)
+            if c.extra.get("holds"):
+                print(f"{c.path}: {c.extra['holds']}")
     if unset:
         print(f"{unset} unset frame{'s' if unset != 1 else ''} not listed (all six values 0 and "
               "no name: the controller's defaults; --all lists them)")

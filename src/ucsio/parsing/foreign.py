@@ -3,7 +3,7 @@
 Two kinds:
 
 - other controllers' files: Yaskawa Motoman's that ucsio does not read yet
-  (``.JBI`` jobs, the ``.CND`` condition files other than UFRAME.CND and
+  (the ``.CND`` condition files other than UFRAME.CND and
   TOOL.CND, and the ``SYSTEM.SYS``/``VAR.DAT``/``RBCALIB.DAT`` of its
   backups, whose suffixes are ABB's and KUKA's: their first line decides), Stäubli VAL3
   (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
@@ -30,7 +30,6 @@ from . import regex
 # UFRAME.CND or TOOL.CND (//UFRAME n, //TOOL n) and refused by its first line
 # where it is another condition file.
 KNOWN = (
-    ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
     ("a Yaskawa robot-to-robot calibration (RBCALIB.DAT)", "Yaskawa", (), r"//RBCALIB\b"),
     ("a Yaskawa global variable file (VAR.DAT)", "Yaskawa", (), r"//VAR\b"),
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",), r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b)[A-Z]+"),
@@ -38,7 +37,7 @@ KNOWN = (
     ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
 )
 # what ucsio reads of a vendor's files, where it reads some: the refusal says so
-READS = {"Yaskawa": "UFRAME.CND and TOOL.CND"}
+READS = {"Yaskawa": "UFRAME.CND, TOOL.CND and jobs (.JBI)"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else
 _KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")

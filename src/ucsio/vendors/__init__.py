@@ -56,7 +56,7 @@ VENDORS = (
     # read line by line (no grammar): UFRAME.CND, TOOL.CND, jobs, and the
     # RBCALIB.DAT and VAR.DAT a backup's .dat search finds (claimed by their
     # first line); what ucsio does not read yet is refused by parsing.foreign
-    Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", (),
+    Entry("yaskawa", "Yaskawa", (".cnd", ".jbi"), (".cnd", ".jbi"), "ucsio.vendors.yaskawa", (),
           heads=("//RBCALIB", "//VAR")),
 )
 BY_NAME = {e.name: e for e in VENDORS}
@@ -80,6 +80,7 @@ class Defaults:
     measurement_columns = None
     robot_suffixes: tuple[str, ...] = ()
     robot_positions = None
+    robot_configs = 1       # how many --config files its positions take (more: a tuple)
 
     # the frame writer: each vendor's plan_changes; the rest shared where it does not differ
     plan_changes = None

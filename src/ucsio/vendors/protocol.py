@@ -42,6 +42,8 @@ class Vendor(Protocol):
     # vendor never imports the dispatch above it. -> vendors.common.robot.RobotPoses
     robot_suffixes: tuple[str, ...]
     robot_positions: Callable[..., Any] | None
+    # how many --config files its reader takes: 1, a path or None; more, a tuple of paths
+    robot_configs: int
 
     # -- writing frames and programs (patch, program): ``review.patch`` plans
     # an edit with these, ``review.verify`` reads it back, ``review.save``

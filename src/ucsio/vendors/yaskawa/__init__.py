@@ -1,9 +1,9 @@
-"""Yaskawa Motoman: user frames (UFRAME.CND) and tools (TOOL.CND).
+"""Yaskawa Motoman: user frames (UFRAME.CND), tools (TOOL.CND) and jobs (.JBI).
 
 ``VENDOR`` is what the registry (``ucsio.vendors``) hands generic code; its
-methods import the reader (``cnd``) only when called. Jobs (.JBI),
-RBCALIB.DAT, VAR.DAT and SYSTEM.SYS are not read yet: parsing.foreign
-refuses them with what ucsio reads of Yaskawa's files.
+methods import the readers (``cnd``, ``job``) only when called. RBCALIB.DAT,
+VAR.DAT and SYSTEM.SYS are not read yet: parsing.foreign refuses them with
+what ucsio reads of Yaskawa's files.
 """
 from __future__ import annotations
 
@@ -17,12 +17,14 @@ class Yaskawa(Defaults):
 
     # -- reading --------------------------------------------------------------------
     def sniff(self, doc) -> bool:
-        from .cnd import sniff
-        return sniff(doc)
+        from . import cnd, job
+        return cnd.sniff(doc) or job.sniff(doc)
 
     def parse(self, doc, full: bool = False, beside: bool = True):
-        from .cnd import parse
-        return parse(doc, full=full)
+        from . import cnd, job
+        # by its first line, whatever its name: /JOB is a job
+        reader = job if job.sniff(doc) else cnd
+        return reader.parse(doc, full=full)
 
     # -- orientation and numbers ------------------------------------------------------
     # R = Rz(rz)·Ry(ry)·Rx(rx): rx is SPEC's c, rz its a (tests/test_yaskawa.py)
@@ -30,7 +32,12 @@ class Yaskawa(Defaults):
     # SPEC's measurement CSV has no Yaskawa columns yet (measurement_columns None)
 
     # -- robot positions (solve --robot) ------------------------------------------------
-    # none yet: jobs (.JBI) are not read
+    robot_suffixes = (".jbi",)          # a job's C and P positions
+    robot_configs = 2                   # --config TOOL.CND and --config UFRAME.CND
+
+    def robot_positions(self, path: str, config, tool: str, wobj: str, load):
+        from .robot import read
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     # patch rewrites a ////BUSER line or a tool's pose line in place; a TOOL.CND
