@@ -108,6 +108,9 @@ class Defaults:
     in_place_refusal = review_copy_warning = program_writer = None
 
     taught_points = None
+    # diff --points: the line that counts the positions its reader skipped
+    skipped_points = ("{count} joint position{s} taught in {name} skipped: joint values do not "
+                      "move with a frame")
 
     def taught_chain(self, cf, frame, measured):
         from .common.taught import alone

@@ -89,6 +89,9 @@ class Vendor(Protocol):
     # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a
     # frame, read from the files around it (diff --points, plan --at-taught)
     taught_points: Callable[..., Any] | None
+    # the line that counts the positions it skipped ({count}, {s}, {name}): FANUC's joint
+    # positions, Yaskawa's pulses and base positions
+    skipped_points: str
 
     def taught_chain(self, cf: ControllerFile, frame: Frame,
                      measured: Pose) -> tuple[list[Pose], list[Pose]]:

@@ -59,7 +59,12 @@ class Yaskawa(Defaults):
         check_patchable(cf, frame, where, warnings)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
-    # no taught points yet: jobs (.JBI) are not read
+    def taught_points(self, cf, frame, cache=None):
+        from .taught import find
+        return find(cf, frame, cache)
+
+    skipped_points = ("{count} PULSE or BASE position{s} of the jobs that use {name} skipped: "
+                      "joint pulses and positions in the robot base do not move with a frame")
 
     def prefilled(self, frame, cf) -> bool:
         """TOOL.CND lists all 64 tools: one all zeros without a name is the
