@@ -22,8 +22,8 @@ class Yaskawa(Defaults):
 
     def parse(self, doc, full: bool = False, beside: bool = True):
         from . import cnd, job
-        # by its first line, whatever its name: /JOB is a job
-        reader = job if job.sniff(doc) else cnd
+        # a job by its first line (/JOB) or its name: a .JBI that is not one says so
+        reader = job if job.sniff(doc) or doc.path.lower().endswith(".jbi") else cnd
         return reader.parse(doc, full=full)
 
     # -- orientation and numbers ------------------------------------------------------
