@@ -305,3 +305,13 @@ def test_cut_only_beside_its_uframe(tmp_path, capsys):
     assert d["points_skipped"] == 1                                 # P00100, a BASE point
     p105 = next(r for r in d["points"] if r["name"] == "P00105")
     assert p105["moved"] == pytest.approx(moved(sim, meas, (216.374, -55.365, 150.0)), abs=1e-9)
+
+
+def test_patch_warning_names_the_jobs_positions_in_the_frame(tmp_path, capsys):
+    shutil.copytree(BACKUP, tmp_path / "backup")
+    s = solution(tmp_path, 1200.5, 300.0, 150.0, 0.0, 0.0, 90.0)
+    code, out, err = cli(capsys, "patch", tmp_path / "backup" / "UFRAME.CND", "--frame", "UF2",
+                         "--measured", s)
+    assert code == 0, err
+    assert "////RXY) no longer produce this frame" in err
+    assert "3 positions of the backup's jobs (" in err and "WELD.JBI) are taught in UF2" in err

@@ -26,6 +26,7 @@ from __future__ import annotations
 from ...errors import UcsioError
 from ...geometry.frames import Pose
 from ...parsing.document import Document
+from ...parsing.model import ControllerFile
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
 from . import job
 
@@ -99,10 +100,10 @@ class _Frames:
 
     def __init__(self, configs, load, vendor: str):
         self.configs, self.load, self.vendor = tuple(configs), load, vendor
-        self.files: dict[str, object] | None = None
+        self.files: dict[str, ControllerFile] | None = None
         self.found: dict[str, Pose] = {}
 
-    def _by_kind(self) -> dict:
+    def _by_kind(self) -> dict[str, ControllerFile]:
         if self.files is None:
             self.files = {}
             for path in self.configs:
