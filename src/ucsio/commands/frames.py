@@ -5,7 +5,7 @@ those a TP program (.ls) sets; Yaskawa user frames of UFRAME.CND (UF1) and
 tools of TOOL.CND (UT0).
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat .va .dg .ls .cnd below it) or a .zip archive (members named
+.prg .dat .va .dg .ls .cnd .jbi below it) or a .zip archive (members named
 ARCHIVE.zip!path). A file that cannot be read is reported on stderr (with
 --json also in "errors") and the others are still listed; exit 2 at the end
 if any could not be read. A FANUC backup's binary files (.tp .sv .vr) are
