@@ -315,3 +315,29 @@ def test_patch_warning_names_the_jobs_positions_in_the_frame(tmp_path, capsys):
     assert code == 0, err
     assert "////RXY) no longer produce this frame" in err
     assert "3 positions of the backup's jobs (" in err and "WELD.JBI) are taught in UF2" in err
+
+
+def test_a_user_frame_on_another_user_frame_goes_through_it(cell):
+    """UF2 defined on UF1 (///BASICFRM 1,19,1): its numbers are in UF1, and the flange
+    is UF1 · UF2 · P · tool⁻¹; UF1 and UF2 on each other is refused, not looped."""
+    from fanuc_cell import pose
+    d = cell.dir
+    uf1 = pose(400.0, -250.0, 30.0, 1.5, -2.0, 35.0)
+    uf2_in_uf1 = xyzabc(inv(uf1) @ cell.uf)
+    (d / "UFRAME.CND").write_bytes(crlf(uframe(1, "BASE1", fields(xyzabc(uf1)))
+                                        + uframe(2, "ON1", fields(uf2_in_uf1), "1,19,1")))
+    configs = [str(d / "TOOL.CND"), str(d / "UFRAME.CND")]
+    rp = read_robot(d / "MEAS.JBI", config=configs)
+    for p, T in zip(rp.poses[:4], cell.flanges):
+        np.testing.assert_allclose(p.flange[:3, 3], T[:3, 3], atol=3e-3)
+    (d / "UFRAME.CND").write_bytes(crlf(uframe(1, "A", fields(xyzabc(uf1)), "1,19,2")
+                                        + uframe(2, "B", fields(uf2_in_uf1), "1,19,1")))
+    rp = read_robot(d / "MEAS.JBI", config=configs)
+    assert "in a circle (UF2 on UF1 on UF2)" in rp.poses[0].problem.message
+
+
+def test_a_jobs_positions_name_their_own_tool_and_frame(cell, capsys):
+    d = cell.dir
+    code, out, err = cli(capsys, "solve", "--laser", d / "laser.txt", "--robot", d / "MEAS.JBI",
+                         "--config", d / "TOOL.CND", "--robot-tool", "UT3", "--tcp", "0,0,100")
+    assert code == 2 and "name their own (///TOOL n, ///USER k)" in err
