@@ -1,8 +1,8 @@
 """Files ucsio recognises and does not read (issue 24 points 3 and 8).
 
-- Another controller's file named on its own (a Yaskawa .JBI, its
+- Another controller's file named on its own (Yaskawa's
   SYSTEM.SYS whose suffix is ABB's, a .CND other than UFRAME.CND and
-  TOOL.CND, which ucsio reads (as it reads VAR.DAT), a Stäubli
+  TOOL.CND, which ucsio reads (as it reads jobs, RBCALIB.DAT and VAR.DAT), a Stäubli
   .dtx, a Universal Robots .installation) is refused with what it is, exit
   2, never "syntax error at 1:1"; in a folder it is listed as not read.
 - A FANUC backup's own .DAT files (ORDERFIL.DAT, UPDATES.DAT:
@@ -24,15 +24,16 @@ from ucsio.cli import main
 DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
-# (Yaskawa's UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py)
+# (Yaskawa's UFRAME.CND, TOOL.CND, jobs, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py)
 FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
                  for p in (CORPUS / vendor).iterdir()
-                 if p.suffix not in (".md", ".tsv") and ".CND" not in p.name.upper()
+                 if p.suffix not in (".md", ".tsv")
+                 and ".CND" not in p.name.upper() and ".JBI" not in p.name.upper()
                  and "RBCALIB.DAT" not in p.name.upper()
                  and not p.name.upper().endswith("VAR.DAT"))
 # what a refusal says of the vendor's files
 NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "
-                       "UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT)",
+                       "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI))",
             "staubli": "does not read Stäubli files yet",
             "ur": "does not read Universal Robots files yet"}
 
@@ -53,7 +54,6 @@ def test_a_corpus_file_of_another_controller_says_what_it_is(capsys, path):
 
 
 @pytest.mark.parametrize("name, text, what", [
-    ("JOB1.JBI", "/JOB\r\n//NAME JOB1\r\n//POS\r\n///NPOS 0,0,0,0,0,0\r\n", "Yaskawa Motoman job"),
     # the suffixes are ABB's and KUKA's: the first line says whose they are
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n", "Yaskawa Motoman file"),
     # a condition file other than UFRAME.CND and TOOL.CND: its first line says so

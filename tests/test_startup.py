@@ -125,3 +125,19 @@ def test_yaskawa_reading_commands_import_nothing_slow(tmp_path):
                                  capture_output=True, text=True, env=env, check=True)
             allowed = ["difflib"] if args[0] == "diff" and len(args) == 3 else []
             assert res.stdout.split() in ([], allowed), (args, res.stdout)
+
+
+def test_a_yaskawa_job_is_read_light(tmp_path):
+    """frames, check and diff of a .JBI, and diff --points over a backup's jobs,
+    import none of numpy, scipy, lark (issue 27: jobs are read line by line)."""
+    from conftest import FIXTURES as FIX
+    backup = FIX / "yaskawa" / "taught_backup"
+    jbi, uframe = backup / "WELD.JBI", backup / "UFRAME.CND"
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"frame": {"x": 1200.5, "y": 300, "z": 150, "a": 90, "b": 0,
+                                         "c": 0}}))
+    for args in (["frames", jbi], ["check", jbi], ["diff", jbi, backup / "HOME.JBI"],
+                 ["diff", uframe, "--frame", "UF2", "--measured", sol, "--points"]):
+        out = subprocess.run([sys.executable, "-c", MODULES_PROBE, *map(str, args)],
+                             capture_output=True, text=True, check=True).stdout.split()
+        assert not set(out) & {"numpy", "scipy", "lark"}, (args, out)

@@ -280,7 +280,6 @@ def test_bad_input_is_one_error_at_its_place(tmp_path, capsys, text, where, word
 
 # -- the files ucsio does not read yet -------------------------------------------------------
 @pytest.mark.parametrize("name, text", [
-    ("JOB1.JBI", "/JOB\r\n//NAME JOB1\r\n"),
     ("ARCSRT.CND", "//ARCSRT 1\r\n///NAME\r\n"),
     ("SYSTEM.SYS", "/SYSTEM 8\r\n//DATE      : 2023/09/19 17:45:46\r\n"),
 ])
@@ -289,7 +288,8 @@ def test_other_yaskawa_files_are_refused_saying_which_are_read(tmp_path, capsys,
     code, out, err = cli(capsys, "frames", path)
     assert code == 2 and "of Yaskawa's files it reads " in err
     reads = err.partition("of Yaskawa's files it reads ")[2]
-    assert all(name in reads for name in ("UFRAME.CND", "TOOL.CND", "RBCALIB.DAT", "VAR.DAT")), err
+    assert all(name in reads for name in
+               ("UFRAME.CND", "TOOL.CND", "RBCALIB.DAT", "VAR.DAT", "jobs (.JBI)")), err
 
 
 # -- commands --------------------------------------------------------------------------------
@@ -315,7 +315,7 @@ def test_diff_of_two_files_and_of_two_backups(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", old, new, "--exit-code")
     assert code == 1, err
     assert "~ UF2 \"FIXTURE\" (UFRAME): value changed" in out and "dx +0.500" in out
-    assert "1 changed, 0 added, 0 removed, 1 unchanged" in out      # TOOL.CND unchanged
+    assert "1 changed, 0 added, 0 removed, 2 unchanged" in out      # TOOL.CND, JOB1.JBI
     assert "UF1 " not in out and "~ TOOL.CND" not in out
 
 

@@ -115,7 +115,7 @@ def check(paths: Paths, ignore: Iterable[str] = ()) -> CheckResult:
 
 def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
           tool: str | None = None, laser: PathLike | None = None,
-          robot: PathLike | None = None, config: PathLike | None = None,
+          robot: PathLike | None = None, config: PathLike | list[PathLike] | None = None,
           map: PathLike | None = None, laser_units: str = "mm", robot_tool: str = "tool0",
           robot_wobj: str = "wobj0", threshold: float = defaults.THRESHOLD,
           min_points: int = defaults.MIN_POINTS, exclude: Iterable[str] = (),
@@ -131,8 +131,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
     or where it lives: ``laser`` (CSV, SpatialAnalyzer export or a name x y z
     table, in ``laser_units``) and ``robot`` (CSV, KUKA .dat with its
     ``config`` $config.dat, ABB module with ``robot_tool``/``robot_wobj``,
-    FANUC .ls or posreg.va with its ``config`` sysframe.va),
-    paired by name (``map``: a CSV of laser,robot name pairs).
+    FANUC .ls or posreg.va with its ``config`` sysframe.va, Yaskawa .JBI
+    with ``config`` a list: its TOOL.CND and UFRAME.CND), paired by name (``map``: a CSV of laser,robot name pairs).
     The TCP (the reflector in flange coordinates, mm; no default): ``tcp``
     as three numbers or "X,Y,Z", ``tcp="solve"`` to solve it with the frame,
     or ``tool="FILE:NAME"``. ``threshold`` (mm), ``min_points``,
@@ -239,9 +239,9 @@ def taught_points(file: PathLike | ControllerFile, frame: str, solution: Any,
     backup's .ls programs), each with ``moved`` (mm, in world, when the
     measured frame replaces the simulated one), worst first;
     ``points_moved`` (``count max mean worst``); ``points_warnings``;
-    ``points_skipped`` (FANUC joint positions, which do not move); with a
-    solution that keeps its covariance (a solve result, a SOLUTION.json)
-    each point's ``at_95`` (mm) and ``working_points``/``worst``."""
+    ``points_skipped`` (FANUC joint positions, Yaskawa pulses and base
+    positions: they do not move); with a solution that keeps its
+    covariance (a solve result, a SOLUTION.json) each point's ``at_95`` (mm) and ``working_points``/``worst``."""
     from .commands import diff as command
     pose, data, _path = _measured(solution)
     doc = command.taught_points(_cell(file), frame, pose, data, oframe=oframe)

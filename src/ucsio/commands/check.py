@@ -6,7 +6,7 @@ warning or a failed round trip; an "info" (legal code worth knowing, such as a
 PERS whose value another module gives) does not fail the check.
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat .va .dg .ls .cnd below it) or a .zip archive (members named
+.prg .dat .va .dg .ls .cnd .jbi below it) or a .zip archive (members named
 ARCHIVE.zip!path). A file that cannot be read (an encrypted module, a syntax
 error) is listed with its error and every other file is still checked; exit 2
 at the end. A FANUC backup's binary files (.tp .sv .vr) are listed as not

@@ -240,8 +240,12 @@ def _points_text(d: dict) -> str:
 
     pm = d["points_moved"]
     skipped = d.get("points_skipped") or 0
-    tail = (f"\n{skipped} joint position{'s' if skipped != 1 else ''} taught in {d['name']} "
-            "skipped: joint values do not move with a frame" if skipped else "")
+    tail = ""
+    if skipped:
+        from .. import vendors
+        said = vendors.get(d["vendor"]).skipped_points if d.get("vendor") in vendors.BY_NAME \
+            else vendors.Defaults.skipped_points
+        tail = "\n" + said.format(count=skipped, s="s" if skipped != 1 else "", name=d["name"])
     if not pm["count"]:
         return f"taught points in {d['name']}: none found" + tail
     head = (f"taught points in {d['name']}: {pm['count']}, moved in world by max "

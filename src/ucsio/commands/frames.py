@@ -5,7 +5,7 @@ those a TP program (.ls) sets; Yaskawa user frames of UFRAME.CND (UF1) and
 tools of TOOL.CND (UT0).
 
 FILE may be a controller file, a backup folder (every .mod .modx .sys .sysx
-.prg .dat .va .dg .ls .cnd below it) or a .zip archive (members named
+.prg .dat .va .dg .ls .cnd .jbi below it) or a .zip archive (members named
 ARCHIVE.zip!path). A file that cannot be read is reported on stderr (with
 --json also in "errors") and the others are still listed; exit 2 at the end
 if any could not be read. A FANUC backup's binary files (.tp .sv .vr) are
@@ -91,9 +91,9 @@ def run(args) -> int:
                     rows, right={4, 5, 6, 7, 8, 9}))
     else:
         print("no set frames" if unset else "no frames")
-    for _, c in parsed:     # a file of no frames says what it holds (Yaskawa's VAR.DAT)
-        if not c.frames and c.extra.get("holds"):
-            print(f"{c.path}: {c.extra['holds']}")
+        for _, c in parsed:             # what a file without frames holds instead (a job)
+            if c.extra.get("holds"):
+                print(f"{c.path}: {c.extra['holds']}")
     if unset:
         print(f"{unset} unset frame{'s' if unset != 1 else ''} not listed (all six values 0 and "
               "no name: the controller's defaults; --all lists them)")

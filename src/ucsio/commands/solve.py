@@ -79,9 +79,10 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
                    help="flange poses: SPEC CSV (robot_* columns), a KUKA program .dat "
                         "(E6POS/POS/FRAME with FDAT), an ABB module (robtargets), a FANUC TP "
                         "program .ls (/POS) or posreg.va")
-    g.add_argument("--config", metavar="FILE", default=None,
+    g.add_argument("--config", metavar="FILE", default=None, action="append",
                    help="KUKA $config.dat for the positions' TOOL_NO/BASE_NO; ABB: a module "
-                        "declaring --robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT")
+                        "declaring --robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT; "
+                        "Yaskawa: TOOL.CND, and a second --config UFRAME.CND for USER positions")
     g.add_argument("--robot-tool", metavar="NAME", default="tool0",
                    help="ABB: the tool the robtargets were taught with (default tool0); "
                         "FANUC posreg.va: the registers' tool frame, UTk")

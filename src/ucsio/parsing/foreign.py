@@ -3,7 +3,7 @@
 Two kinds:
 
 - other controllers' files: Yaskawa Motoman's that ucsio does not read yet
-  (``.JBI`` jobs, the ``.CND`` condition files other than UFRAME.CND and
+  (the ``.CND`` condition files other than UFRAME.CND and
   TOOL.CND, and the ``SYSTEM.SYS`` of its backups, whose suffix is
   ABB's: its first line decides), Stäubli VAL3
   (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
@@ -31,14 +31,13 @@ from . import regex
 # (//RBCALIB n) and a VAR.DAT (//VAR), and refused by its first line where it
 # is another condition file.
 KNOWN = (
-    ("a Yaskawa Motoman job", "Yaskawa", (".jbi",), r"/JOB\b"),
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",),
      r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b|RBCALIB\b|VAR\b)[A-Z]+"),
     ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
     ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
 )
 # what ucsio reads of a vendor's files, where it reads some: the refusal says so
-READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT and VAR.DAT"}
+READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI)"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else
 _KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")

@@ -15,6 +15,7 @@ import os
 from pathlib import Path
 
 from .. import vendors
+from ..errors import UcsioError
 from ..vendors.common.robot import RobotPose, RobotPoses
 
 
@@ -29,8 +30,23 @@ def read_robot(path: str | os.PathLike, *, config: str | None = None, tool: str 
     vendor = _positions_vendor(Path(path).suffix.lower())
     if vendor is not None:
         from ..parsing.controller import load
-        return vendor.robot_positions(path, config=config, tool=tool, wobj=wobj, load=load)
+        return vendor.robot_positions(path, config=_configs(vendor, config), tool=tool,
+                                      wobj=wobj, load=load)
     return spec_csv(path, angle_units=angle_units, quaternion_order=quaternion_order)
+
+
+def _configs(vendor, config):
+    """``--config`` as the vendor's reader takes it: one path (or None), or,
+    where it takes several (Yaskawa's TOOL.CND and UFRAME.CND), a tuple."""
+    given = [] if config is None else [config] if isinstance(config, (str, os.PathLike)) \
+        else list(config)
+    given = [os.fspath(c) for c in given]
+    if vendor.robot_configs > 1:
+        return tuple(given)
+    if len(given) > 1:
+        raise UcsioError(f"--config given {len(given)} times: {vendor.title}'s positions take "
+                         "one file")
+    return given[0] if given else None
 
 
 def _positions_vendor(suffix: str):

@@ -11,7 +11,10 @@ the frame's own dt_mean may say 3 mm. The readers find them:
   modules of the file's folder;
 - ``fanuc``: /POS positions whose group says ``UF : k``, in the .ls files of
   the backup (the folder of the sysframe.va, and below it); joint positions
-  are counted as skipped (they do not move with a frame).
+  are counted as skipped (they do not move with a frame);
+- ``yaskawa``: USER positions under ``///USER k`` in the .JBI jobs of the
+  backup (the folder of the UFRAME.CND, and below it); the pulses and base
+  positions of those jobs are counted as skipped.
 
 ``points_moved`` puts each one through the simulated and the measured frame
 (frames.Pose, the one place for frame algebra) and reports
@@ -101,7 +104,8 @@ def points_moved(cf: ControllerFile, frame: Frame, measured: Pose,
     worst first) and ``points_moved`` (``count``, ``max``, ``mean``,
     ``worst``: the name of the point that moves most), with the readers'
     ``points_warnings`` and ``points_skipped`` (how many positions taught
-    in the frame do not move with it: FANUC joint positions). Given the
+    in the frame do not move with it: FANUC joint positions, Yaskawa
+    pulses and base positions). Given the
     ``solution``'s JSON with its covariance, the taught points are its
     working points: each row gets ``at_95``, the
     predicted 95 % error of the measured frame there (mm), and

@@ -59,7 +59,7 @@ VENDORS = (
     # read line by line (no grammar): UFRAME.CND, TOOL.CND, jobs, and the
     # RBCALIB.DAT and VAR.DAT a backup's .dat search finds (claimed by their
     # first line); what ucsio does not read yet is refused by parsing.foreign
-    Entry("yaskawa", "Yaskawa", (".cnd",), (".cnd",), "ucsio.vendors.yaskawa", (),
+    Entry("yaskawa", "Yaskawa", (".cnd", ".jbi"), (".cnd", ".jbi"), "ucsio.vendors.yaskawa", (),
           heads=("//RBCALIB", "//VAR"), programs=(".jbi",)),
 )
 BY_NAME = {e.name: e for e in VENDORS}
@@ -86,6 +86,7 @@ class Defaults:
     measurement_columns = None
     robot_suffixes: tuple[str, ...] = ()
     robot_positions = None
+    robot_configs = 1       # how many --config files its positions take (more: a tuple)
 
     # the frame writer: each vendor's plan_changes; the rest shared where it does not differ
     plan_changes = None
@@ -115,6 +116,9 @@ class Defaults:
     program_options: tuple[str, ...] = ()
 
     taught_points = None
+    # diff --points: the line that counts the positions its reader skipped
+    skipped_points = ("{count} joint position{s} taught in {name} skipped: joint values do not "
+                      "move with a frame")
 
     def taught_chain(self, cf, frame, measured):
         from .common.taught import alone

@@ -42,6 +42,8 @@ class Vendor(Protocol):
     # vendor never imports the dispatch above it. -> vendors.common.robot.RobotPoses
     robot_suffixes: tuple[str, ...]
     robot_positions: Callable[..., Any] | None
+    # how many --config files its reader takes: 1, a path or None; more, a tuple of paths
+    robot_configs: int
 
     # -- writing frames and programs (patch, program): ``review.patch`` plans
     # an edit with these, ``review.verify`` reads it back, ``review.save``
@@ -93,6 +95,9 @@ class Vendor(Protocol):
     # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a
     # frame, read from the files around it (diff --points, plan --at-taught)
     taught_points: Callable[..., Any] | None
+    # the line that counts the positions it skipped ({count}, {s}, {name}): FANUC's joint
+    # positions, Yaskawa's pulses and base positions
+    skipped_points: str
 
     def taught_chain(self, cf: ControllerFile, frame: Frame,
                      measured: Pose) -> tuple[list[Pose], list[Pose]]:

@@ -1,9 +1,9 @@
-"""Yaskawa Motoman: user frames (UFRAME.CND), tools (TOOL.CND) and the
-robot-to-robot calibration (RBCALIB.DAT).
+"""Yaskawa Motoman: user frames (UFRAME.CND), tools (TOOL.CND), jobs (.JBI),
+the robot-to-robot calibration (RBCALIB.DAT) and the global variables (VAR.DAT).
 
 ``VENDOR`` is what the registry (``ucsio.vendors``) hands generic code; its
-methods import the readers (``cnd``, ``rbcalib``, ``var`` for VAR.DAT)
-only when called. Jobs (.JBI) and SYSTEM.SYS are not read yet:
+methods import the readers (``cnd``, ``job``, ``rbcalib``, ``var``) only
+when called. SYSTEM.SYS and the other condition files are not read yet:
 parsing.foreign refuses them with what ucsio reads of Yaskawa's files.
 """
 from __future__ import annotations
@@ -18,17 +18,19 @@ class Yaskawa(Defaults):
 
     # -- reading --------------------------------------------------------------------
     def sniff(self, doc) -> bool:
-        from . import cnd, rbcalib, var
-        return cnd.sniff(doc) or rbcalib.sniff(doc) or var.sniff(doc)
+        from . import cnd, job, rbcalib, var
+        return cnd.sniff(doc) or job.sniff(doc) or rbcalib.sniff(doc) or var.sniff(doc)
 
     def parse(self, doc, full: bool = False, beside: bool = True):
-        from . import rbcalib, var  # each file by its first line (a git temporary file has no name)
+        # each file by its first line (a git temporary file has no name); a
+        # .JBI that is not a job says so
+        from . import cnd, job, rbcalib, var
         if rbcalib.sniff(doc):
             return rbcalib.parse(doc, full=full)
         if var.sniff(doc):          # //VAR: the global variables (no frames)
             return var.parse(doc, full=full)
-        from .cnd import parse
-        return parse(doc, full=full)
+        reader = job if job.sniff(doc) or doc.path.lower().endswith(".jbi") else cnd
+        return reader.parse(doc, full=full)
 
     # -- orientation and numbers ------------------------------------------------------
     # R = Rz(rz)·Ry(ry)·Rx(rx): rx is SPEC's c, rz its a (tests/test_yaskawa.py)
@@ -36,7 +38,12 @@ class Yaskawa(Defaults):
     # SPEC's measurement CSV has no Yaskawa columns yet (measurement_columns None)
 
     # -- robot positions (solve --robot) ------------------------------------------------
-    # none yet: jobs (.JBI) are not read
+    robot_suffixes = (".jbi",)          # a job's C and P positions
+    robot_configs = 2                   # --config TOOL.CND and --config UFRAME.CND
+
+    def robot_positions(self, path: str, config, tool: str, wobj: str, load):
+        from .robot import read
+        return read(self, path, config, tool, wobj, load)
 
     # -- writing frames and programs (patch, program) -----------------------------------
     # patch rewrites a ////BUSER line or a tool's pose line in place; a TOOL.CND
@@ -66,7 +73,12 @@ class Yaskawa(Defaults):
         return from_solution(pose, frame, **options)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
-    # no taught points yet: jobs (.JBI) are not read
+    def taught_points(self, cf, frame, cache=None):
+        from .taught import find
+        return find(cf, frame, cache)
+
+    skipped_points = ("{count} PULSE or BASE position{s} of the jobs that use {name} skipped: "
+                      "joint pulses and positions in the robot base do not move with a frame")
 
     def prefilled(self, frame, cf) -> bool:
         """TOOL.CND lists all 64 tools: one all zeros without a name is the

@@ -12,6 +12,7 @@ LINT_CODES = {
                        "in its file",
     "track-position": "info: a Yaskawa user frame taught with the robot at a track position "
                       "(///BASEP not zero)",
-    "unknown-line": "info: a line or block of a Yaskawa condition file or RBCALIB.DAT ucsio "
-                    "does not read, kept as it is",
+    "unknown-line": "info: a line or block of a Yaskawa condition file, job or RBCALIB.DAT "
+                    "ucsio does not read, kept as it is",
+    "npos-count": "a Yaskawa job whose ///NPOS does not count the positions that follow it",
 }

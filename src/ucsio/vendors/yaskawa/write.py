@@ -80,7 +80,24 @@ def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: lis
                          "does not match: not patched, nothing written (edit the tool on the "
                          "pendant)", file=where.get("file"), line=crc_line, col=1)
     if frame.type == "UFRAME":
-        warnings.append(TAUGHT_POINTS_WARNING.format(name=frame.name))
+        warnings.append(TAUGHT_POINTS_WARNING.format(name=frame.name) + _in_jobs(cf, frame))
+
+
+def _in_jobs(cf: ControllerFile, frame: Frame) -> str:
+    """What the backup's jobs hold in the frame: those positions move with
+    it (read as ``diff --points`` reads them)."""
+    if frame.file in (None, "", "-"):     # standard input: no backup around it
+        return ""
+    from .taught import find
+    found = find(cf, frame)
+    n = len(found.points)
+    if not n:
+        return ""
+    files = sorted({p.file for p in found.points})
+    shown = ", ".join(files[:3]) + (f" and {len(files) - 3} more" if len(files) > 3 else "")
+    return (f"; {n} position{'s' if n != 1 else ''} of the backup's jobs ({shown}) "
+            f"{'are' if n != 1 else 'is'} taught in {frame.name} and move{'' if n != 1 else 's'} "
+            "with it (diff --points shows how far)")
 
 
 def _crc_line(frame: Frame) -> int:
