@@ -123,6 +123,27 @@ def text_fields(text: str, values) -> list[str]:
     return line.split("=")[1].split(",")
 
 
+def test_the_job_reads_back_through_the_job_reader(tmp_path, capsys):
+    """The written job is one ucsio's own job reader takes: a byte-exact round
+    trip, no finding, and its //POS rows are the three positions written, as
+    BASE positions of P variables in tool 0 (what MFRAME is given)."""
+    from ucsio.parsing.controller import load
+    out_path = tmp_path / "SETUF2.JBI"
+    code, _out, err = cli(capsys, "program", solution(tmp_path), "--frame", "UF2", "--p", "100",
+                          "-o", out_path)
+    assert code == 0, err
+    cf = load(out_path, full=True)
+    assert cf.vendor == "yaskawa" and cf.extra["kind"] == "job" and cf.frames == []
+    assert cf.document.to_bytes() == out_path.read_bytes()
+    assert [(f.code, f.message) for f in cf.lints] == []
+    found = cf.extra["positions"]
+    assert [(p.point, p.postype, p.tool, p.pulse) for p in found] == \
+        [("P100", "BASE", 0, False), ("P101", "BASE", 0, False), ("P102", "BASE", 0, False)]
+    assert [list(p.xyzabc()) for p in found] == [v for _, v in pos_rows(out_path.read_text())]
+    code, out, err = cli(capsys, "check", out_path)
+    assert code == 0 and "round trip ok" in out, (out, err)
+
+
 # -- the job's lines -------------------------------------------------------------------------
 def test_the_job_is_crlf_with_the_lines_a_controller_expects(tmp_path, capsys):
     out_path = tmp_path / "SETUF2.JBI"
