@@ -49,7 +49,7 @@ class Cell:
     config: str | None = None    # the file that holds the tool, where not the controller file
     points: bool = False         # diff with the positions the backup's programs teach in frame
     program_file: str | None = None  # the program that sets the frame, where the vendor has one
-    comment: bool = False        # FANUC: the program keeps the frame's comment (--comment)
+    comment: bool = False        # replay.sh: ucsio program keeps the frame's comment (FANUC)
 
     @property
     def vendor(self) -> str:
@@ -213,26 +213,30 @@ def _points(cell: Cell, root: Path, cf, sim, sol, skipped: list) -> dict | None:
 
 
 def _program(cell: Cell, root: Path, sim, sol, folder: Path | None, skipped: list):
-    """The program that sets the measured frame, made as ``ucsio program
-    solution.json --frame F -o FILE`` makes it (replay.sh's step), where the
-    cell's vendor has a program writer; written into the cell's folder where
-    one is written and the solution accepted. FANUC: its register one that
-    the backup's POSREG.VA shows unused, the frame's comment kept."""
-    if vendors.get(cell.vendor).program_writer is None:
+    """The program that sets the measured frame, by the vendor's program
+    writer (the bytes ``ucsio program`` writes, as ``batch --patch-dir`` writes
+    them beside a listing's copy), where the cell's vendor has one: into the
+    cell's folder where one is written and the solution accepted, else into a
+    temporary folder, so that the demo writes nothing. FANUC: its register
+    one that the backup's POSREG.VA shows unused, the frame's comment kept."""
+    writer = vendors.get(cell.vendor).program_writer
+    if writer is None:
         skipped.append({"step": "program", "why": vendors.missing(cell.vendor, "program writer")
                         + f": {cell.program_file} is not generated"})
         return None
-    from ..commands.program import make
-    from ..files import atomic_write, write_target
-    made = make(sol.as_dict(), cell.frame, output=cell.program_file,
-                posreg=str(root / cell.posreg) if cell.posreg else None,
-                comment=sim.label if cell.comment else None)
-    written = None
+    posreg = str(root / cell.posreg) if cell.posreg else None
     if folder is not None and sol.accepted:
-        written, _ = atomic_write(write_target(str(folder / cell.program_file)), made.data)
+        made = writer(sol.pose, sim, str(folder), posreg=posreg)
+        written = made.written
+    else:
+        import tempfile
+        with tempfile.TemporaryDirectory() as tmp:
+            made = writer(sol.pose, sim, tmp, posreg=posreg)
+        written = None
     info = made.as_dict()
-    prog = {"file": cell.program_file, "name": info["name"], "frame": info["frame"],
-            "text": info["text"], "written": str(written) if written else None}
+    prog = {"file": os.path.basename(made.written), "name": info["name"],
+            "frame": info["frame"], "text": info["text"],
+            "written": str(written) if written else None}
     if info.get("pr") is not None:          # FANUC: the position register it fills
         pr_from = info.get("pr_from")
         prog["pr"] = info["pr"]
