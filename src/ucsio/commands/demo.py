@@ -2,9 +2,14 @@
 an ABB RAPID module, each with a laser-tracker measurement holding one
 blunder; a KUKA cell measured where the data live, a SpatialAnalyzer export
 and the measurement program's .dat, whose reflector TCP is solved with the
-frame; and a FANUC cell, a tracker's point table and the measurement program
-MEASURE.LS, its frame set by a generated TP program): solve, diff against the
-simulated frame, preview the patch. Nothing
+frame; a FANUC cell, a tracker's point table and the measurement program
+MEASURE.LS, its frame set by a generated TP program; and a Yaskawa cell, a
+point table and the measurement job MEASURE.JBI with TOOL.CND, its frame set
+by a generated SETUF job or a patch of UFRAME.CND's BUSER): solve, diff
+against the simulated frame (and the taught points of the cell's production
+program), preview the patch. A step the cell's vendor cannot do yet is said
+so and not run; a cell whose robot side ucsio cannot read yet is listed as
+not run, with the reason, and does not fail the demo. Nothing
 is written unless --out DIR is given: then DIR/<cell>/ holds the cell's inputs
 (controller file, measurement CSV), solution.json, the patched copy under
 patched/, and replay.sh with every step as the ucsio command to type. The
