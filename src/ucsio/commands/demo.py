@@ -2,9 +2,14 @@
 an ABB RAPID module, each with a laser-tracker measurement holding one
 blunder; a KUKA cell measured where the data live, a SpatialAnalyzer export
 and the measurement program's .dat, whose reflector TCP is solved with the
-frame; and a FANUC cell, a tracker's point table and the measurement program
-MEASURE.LS, its frame set by a generated TP program): solve, diff against the
-simulated frame, preview the patch. Nothing
+frame; a FANUC cell, a tracker's point table and the measurement program
+MEASURE.LS, its frame set by a generated TP program; and a Yaskawa cell, a
+point table and the measurement job MEASURE.JBI with TOOL.CND, its frame set
+by a generated SETUF job or a patch of UFRAME.CND's BUSER): solve, diff
+against the simulated frame (and the taught points of the cell's production
+program), preview the patch. A step the cell's vendor cannot do yet is said
+so and not run; a cell whose robot side ucsio cannot read yet is listed as
+not run, with the reason, and does not fail the demo. Nothing
 is written unless --out DIR is given: then DIR/<cell>/ holds the cell's inputs
 (controller file, measurement CSV), solution.json, the patched copy under
 patched/, and replay.sh with every step as the ucsio command to type. The
@@ -15,7 +20,7 @@ import sys
 
 from .. import defaults, vendors
 from ..output import emit_json, fmt, paint, paint_diff, table
-from .diff import delta_table
+from .diff import _points_text as points_text, delta_table
 
 
 def add_arguments(p) -> None:
@@ -33,18 +38,20 @@ def run(args) -> int:
     if args.json:
         emit_json(result)
         return status
-    for k, cell in enumerate(result["cells"]):
+    every = sorted(result["cells"] + result["not_run"], key=lambda c: c["cell"])
+    for k, cell in enumerate(every):
         if k:
             print()
-        print_cell(cell)
+        print_cell(cell) if "solve" in cell else print_not_run(cell)
     print()
-    verdict = "every cell passes" if result["ok"] else "a cell failed its gate"
-    print(f"demo: {len(result['cells'])} cells, {verdict}.")
+    print(summary(result))
     if result["out"]:
-        for cell in result["cells"]:
+        for cell in every:
             program = (cell.get("program") or {}).get("written")
-            print(f"wrote {cell['folder']}: inputs, solution.json, "
-                  + (f"{cell['patch']['written']}, " if cell["patch"]["written"] else "")
+            patched = (cell.get("patch") or {}).get("written")
+            print(f"wrote {cell['folder']}: inputs, "
+                  + ("solution.json, " if "solve" in cell else "")
+                  + (f"{patched}, " if patched else "")
                   + (f"{program}, " if program else "")
                   + "replay.sh (every step by hand)", file=sys.stderr)
     else:
@@ -53,27 +60,61 @@ def run(args) -> int:
     return status
 
 
-def print_cell(cell: dict) -> None:
-    s = cell["solve"]
-    d = cell["diff"]
+def summary(result: dict) -> str:
+    """The last line: how many cells, whether they pass, which could not run."""
+    ran, not_run = result["cells"], result["not_run"]
+    verdict = "every cell passes" if result["ok"] else "a cell failed its gate"
+    if not not_run:
+        return f"demo: {len(ran)} cells, {verdict}."
+    names = ", ".join(c["cell"] for c in not_run)
+    return (f"demo: {len(ran)} of {len(ran) + len(not_run)} cells run, {verdict}; not run yet: "
+            f"{names} (what this ucsio cannot read yet is said above).")
+
+
+def print_header(cell: dict) -> None:
     label = f" \"{cell['label']}\"" if cell.get("label") else ""
     rule = "=" * 78
     print(rule)
     print(f"cell {cell['cell']} ({vendors.title(cell['vendor'])}): {cell['story']}")
     print(rule)
     print(f"controller   {cell['controller']}   frame {cell['frame']}{label}")
+
+
+def tool_words(cell: dict) -> str:
+    """UT3 "SMR" (R05_yaskawa/TOOL.CND): the tool, and its file where not the controller."""
     tool = cell["tool"]
     tl = f" \"{tool['label']}\"" if tool.get("label") else ""
+    where = tool.get("file")
+    return tool["name"] + tl + (f" ({where})" if where and where != cell["controller"] else "")
+
+
+def print_not_run(cell: dict) -> None:
+    """A cell whose robot side this ucsio cannot read yet: what it holds, and why."""
+    print_header(cell)
+    tcp = ", ".join(f"{v:.3f}" for v in cell["tool"]["tcp"])
+    print(f"laser        {cell['measurement']}   robot {cell['robot']}   TCP from "
+          f"{tool_words(cell)}: {tcp}")
+    print()
+    print(f"1. solve: not run: {cell['why']}")
+    print("   the diff, the taught points, the write-back and the patch preview need the "
+          "solution: not run")
+
+
+def print_cell(cell: dict) -> None:
+    s = cell["solve"]
+    d = cell["diff"]
+    print_header(cell)
+    tool = cell["tool"]
     solved = s.get("tcp") if isinstance(s.get("tcp"), dict) and s["tcp"].get("solved") else None
     tcp = ", ".join(f"{v:.3f}" for v in tool["tcp"])
     if solved:
         print(f"laser        {cell['measurement']}   robot {cell['robot']}")
-        print(f"TCP of {tool['name']}{tl}: nominal {tcp}, solved with the frame")
+        print(f"TCP of {tool_words(cell)}: nominal {tcp}, solved with the frame")
     elif cell.get("robot"):
         print(f"laser        {cell['measurement']}   robot {cell['robot']}   TCP from "
-              f"{tool['name']}{tl}: {tcp}")
+              f"{tool_words(cell)}: {tcp}")
     else:
-        print(f"measurement  {cell['measurement']}   TCP from {tool['name']}{tl}: {tcp}")
+        print(f"measurement  {cell['measurement']}   TCP from {tool_words(cell)}: {tcp}")
     for w in cell.get("warnings") or ():
         print(f"warning: {w}")
     print()
@@ -101,22 +142,40 @@ def print_cell(cell: dict) -> None:
     print(f"   angle {d['angle']:.4f} deg, dist {d['dist']:.3f} mm, dt_mean {d['dt_mean']:.3f} mm: "
           f"group {d['group']}, {paint('PASS', 'pass') if d['pass'] else paint('FAIL', 'fail')} "
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
+    skipped = {s["step"]: s["why"] for s in cell.get("skipped") or ()}
+    if cell.get("points") is not None:
+        print(indent(points_text({**cell["points"], "name": cell["frame"]})))
+    elif "points" in skipped:
+        print(f"   taught points: not run: {skipped['points']}")
     print()
+    step = 3
     program = cell.get("program")
-    if program is not None:         # FANUC: the controller does not load .va files
-        print(f"3. write-back: a TP program that sets {program['frame']} (PR[{program['pr']}]: "
-              f"unused in {program['pr_from']}), as the controller writes its .LS files")
-        lines = program["text"].split("\r\n")
-        body = lines[lines.index("/MN") + 1:lines.index("/POS")]
-        print(indent("\n".join([f"/PROG  {program['name']}", "/MN", *body, "/END"])))
+    if program is not None or "program" in skipped:
+        print_program(program, skipped.get("program"))
         print()
-        print("4. review: the listing with the measured frame (a copy for the reviewer; the "
-              "controller does not load it)")
-        print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))
+        step = 4
+    patch = cell["patch"]
+    if patch.get("review_copy"):        # FANUC: the controller does not load .va files
+        print(f"{step}. review: the listing with the measured frame (a copy for the reviewer; "
+              "the controller does not load it)")
+    else:
+        print(f"{step}. patch preview (only the frame's numbers change"
+              + (f", and {tool['name']}'s x, y, z)" if solved else ")"))
+    print(indent(paint_diff(patch["diff"].rstrip("\n"))))
+    for w in patch.get("warnings") or ():
+        print(indent(f"warning: {w}"))
+
+
+def print_program(program: dict | None, why: str | None) -> None:
+    """Step 3: the generated program that sets the frame, or why there is none."""
+    if program is None:
+        print(f"3. write-back by a generated program: not run: {why}")
         return
-    print("3. patch preview (only the frame's numbers change"
-          + (f", and {tool['name']}'s x, y, z)" if solved else ")"))
-    print(indent(paint_diff(cell["patch"]["diff"].rstrip("\n"))))
+    register = (f" (PR[{program['pr']}]: unused in {program['pr_from']})"
+                if program.get("pr") is not None else "")
+    print(f"3. write-back: {program['file']}, a program that sets {program['frame']}"
+          f"{register}, as the controller writes its programs")
+    print(indent(program["text"].replace("\r\n", "\n").rstrip("\n")))
 
 
 def indent(text: str, pad: str = "   ") -> str:

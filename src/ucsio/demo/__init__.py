@@ -12,6 +12,13 @@ measured one, and previews the patch as a unified diff. ``out`` writes, per
 cell, the inputs (controller file, measurement), the solution and the patched
 copy (never the shipped files), with ``replay.sh``: the same steps as ucsio
 commands, to run by hand.
+
+A step runs where the cell's vendor has the capability it needs (its reader
+of robot positions, of taught points, its program writer) and is otherwise
+reported as not run, with the words ``vendors.missing`` gives: the fifth
+cell (Yaskawa) turns each step on by itself when its vendor gains it. A
+cell whose robot side cannot be read yet is not solved: it is listed in
+``not_run`` (its inputs and replay.sh are still written).
 """
 from __future__ import annotations
 
@@ -39,17 +46,15 @@ class Cell:
     tcp_solve: bool = True       # with robot: False takes the tool's TCP as it is
     extra: tuple[str, ...] = ()  # other files of the backup (FANUC: POSREG.VA, a program)
     posreg: str | None = None    # FANUC: the listing program() picks an unused register from
+    config: str | None = None    # the file that holds the tool, where not the controller file
+    points: bool = False         # diff with the positions the backup's programs teach in frame
+    program_file: str | None = None  # the program that sets the frame, where the vendor has one
+    comment: bool = False        # replay.sh: ucsio program keeps the frame's comment (FANUC)
 
     @property
     def vendor(self) -> str:
         """The controller file's vendor, by its name (the registry's suffixes)."""
         return vendors.by_suffix(self.controller)
-
-    @property
-    def set_by_program(self) -> bool:
-        """Whether the vendor has a program that sets the measured frame
-        (FANUC: a TP program; its controller loads no file ucsio patches)."""
-        return vendors.get(self.vendor).program_writer is not None
 
 
 CELLS = (
@@ -68,7 +73,14 @@ CELLS = (
          "FANUC palletising cell, from the tracker's point table and the measurement program "
          "MEASURE.LS: UF1 'PALLET' as simulated vs measured, set by a generated TP program",
          robot="R04_fanuc/MEASURE.LS", tcp_solve=False,
-         extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"), posreg="R04_fanuc/POSREG.VA"),
+         extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"), posreg="R04_fanuc/POSREG.VA",
+         points=True, program_file="SET_UF1.LS", comment=True),
+    Cell("R05", "R05_yaskawa/UFRAME.CND", "UF2", "R05_yaskawa/fixture_points.txt", "UT3",
+         "Yaskawa YRC1000 at an assembly fixture, from the tracker's point table and the "
+         "measurement job MEASURE.JBI: UF2 'FIXTURE' as simulated vs measured, set by a "
+         "generated SETUF job or by patching UFRAME.CND's BUSER",
+         robot="R05_yaskawa/MEASURE.JBI", tcp_solve=False, config="R05_yaskawa/TOOL.CND",
+         extra=("R05_yaskawa/PLACE.JBI",), points=True, program_file="SETUF2.JBI"),
 )
 
 
@@ -78,64 +90,94 @@ def data_root():
 
 def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
              tolerance: float | None = None) -> dict[str, Any]:
+    """One cell end to end; a cell whose robot side cannot be read yet is
+    returned unsolved, with ``why`` (``run_demo`` lists it in ``not_run``)."""
     from ..parsing.controller import load
     from ..review.diff import DEFAULT_TOLERANCE
-    from ..readers.measurement import read_measurement
     from ..geometry.frames import tool_tcp
     from ..review.patch import patch_frame
     from ..review.save import save
     from ..review.compare import diff_frame
-    from ..method.solve import solve
 
     tol = DEFAULT_TOLERANCE if tolerance is None else tolerance
-    controller = root / cell.controller
-    cf = load(controller)
-    tool = cf.frame(cell.tool)
+    cf = load(root / cell.controller)
+    tool = (load(root / cell.config) if cell.config else cf).frame(cell.tool)
     tcp = tool_tcp(tool)
+    sim = cf.frame(cell.frame)
+    folder = None if out is None else Path(out) / Path(cell.controller).parent.name
+    head = {"cell": cell.name, "vendor": cell.vendor, "story": cell.story,
+            "controller": cell.controller, "measurement": cell.measurement,
+            "frame": sim.name, "label": sim.label,
+            "tool": {"name": tool.name, "label": tool.label, "tcp": list(tcp),
+                     "file": cell.config or cell.controller},
+            "robot": cell.robot}
+    why = robot_side_missing(cell, root)
+    if why is not None:
+        if folder is not None:
+            _mkdir(folder)
+            write_inputs(cell, root, folder, None, label=sim.label,
+                         skipped=[{"step": "solve", "why": why}])
+        return {**head, "step": "solve", "why": why,
+                "folder": str(folder) if folder is not None else None}
     warnings: list[str] = []
     if cell.robot is None:
+        from ..readers.measurement import read_measurement
+        from ..method.solve import solve
         sol = solve(read_measurement(root / cell.measurement), tcp)
     else:
         sol, warnings = _solve_where_it_lives(cell, root, None if cell.tcp_solve else tcp)
-    sim = cf.frame(cell.frame)
     d = diff_frame(cf, cell.frame, sol.pose, tol)
-    # FANUC: the listing's reviewed copy (the controller does not load .va
-    # files) and the TP program that sets the frame
+    skipped: list[dict[str, str]] = []
+    points = _points(cell, root, cf, sim, sol, skipped) if cell.points else None
     result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
     if cell.robot is not None and cell.tcp_solve:
         result = _with_tcp(cf, result, cell.tool, sol.tcp)
-    prog = _program(cell, root, sim, sol) if cell.set_by_program else None
-    written = folder = None
-    if out is not None:
-        folder = Path(out) / Path(cell.controller).parent.name
+    written = None
+    if folder is not None:
         _mkdir(folder / "patched")
-        write_inputs(cell, root, folder, sol, label=sim.label)
+    prog = _program(cell, root, sim, sol, folder, skipped) if cell.program_file else None
+    if folder is not None:
+        write_inputs(cell, root, folder, sol, label=sim.label, skipped=skipped)
         if sol.accepted:
             written = save(result, folder / "patched" / Path(cell.controller).name)
-            if prog is not None:
-                from ..vendors.fanuc.program import save as save_program
-                save_program(prog, str(folder / PROGRAM_FILE))     # sets prog.written
     label = f"a/{cell.controller}"
-    extra = {} if prog is None else {"program": {
-        "file": PROGRAM_FILE, "name": prog.name, "frame": prog.frame, "pr": prog.pr,
-        "pr_from": Path(prog.pr_from).name if prog.pr_from != "--pr" else prog.pr_from,
-        "text": prog.text, "written": str(prog.written) if prog.written else None}}
-    return {**extra, 
-        "cell": cell.name, "vendor": cell.vendor, "story": cell.story,
-        "controller": cell.controller, "measurement": cell.measurement,
-        "frame": sim.name, "label": sim.label,
-        "tool": {"name": tool.name, "label": tool.label, "tcp": list(tcp)},
-        "robot": cell.robot, "warnings": warnings,
+    vendor = vendors.get(cell.vendor)
+    extra = {} if prog is None else {"program": prog}
+    if points is not None:
+        extra["points"] = points
+    return {**extra, **head,
+        "warnings": warnings,
         "solve": sol.as_dict(),
         "diff": d,
         "patch": {"changes": [c.as_dict() for c in result.changes],
                   "diff": result.diff.replace(f"a/{result.path.lstrip('/')}", label)
                                      .replace(f"b/{result.path.lstrip('/')}",
                                               f"b/{cell.controller}"),
+                  "warnings": [w for w in result.warnings if w != vendor.review_copy_warning],
+                  "review_copy": vendor.review_copy_warning is not None,
                   "written": str(written) if written else None},
+        "skipped": skipped,
         "folder": str(folder) if folder is not None else None,
         "ok": bool(sol.accepted and d["pass"]),
     }
+
+
+def robot_side_missing(cell: Cell, root: Path) -> str | None:
+    """Why the cell's robot file cannot be read yet, or None: its vendor has
+    no reader of robot positions for files of its kind (the capability, not
+    the vendor's name, decides), and what ucsio says of such a file."""
+    if cell.robot is None:
+        return None
+    vendor = vendors.get(cell.vendor)
+    suffix = Path(cell.robot).suffix.lower()
+    if vendor.robot_positions is not None and suffix in vendor.robot_suffixes:
+        return None
+    from ..parsing.foreign import other_vendor
+    why = vendors.missing(cell.vendor, "reader of robot positions")
+    name = Path(cell.robot).name
+    head = (root / cell.robot).read_bytes()[:256].decode("latin-1")
+    refusal = other_vendor(name, head)
+    return f"{why}: {name} is {refusal}" if refusal else f"{why} ({name})"
 
 
 def _solve_where_it_lives(cell: Cell, root: Path, tcp=None):
@@ -146,7 +188,8 @@ def _solve_where_it_lives(cell: Cell, root: Path, tcp=None):
     from ..readers.robot import read_robot
 
     meas, warnings = pair(read_laser(root / cell.measurement),
-                          read_robot(root / cell.robot, config=str(root / cell.controller)))
+                          read_robot(root / cell.robot,
+                                     config=str(root / (cell.config or cell.controller))))
     if tcp is not None:
         from ..method.solve import solve
         return solve(meas, tcp), warnings
@@ -154,16 +197,51 @@ def _solve_where_it_lives(cell: Cell, root: Path, tcp=None):
     return solve_joint(meas), warnings
 
 
-PROGRAM_FILE = "SET_UF1.LS"     # the FANUC cell's program (its name is the program's)
+def _points(cell: Cell, root: Path, cf, sim, sol, skipped: list) -> dict | None:
+    """diff --points: how far the positions the backup's programs teach in
+    the frame move, where the vendor reads taught points."""
+    if vendors.get(cell.vendor).taught_points is None:
+        skipped.append({"step": "points", "why": vendors.missing(cell.vendor,
+                                                                 "reader of taught points")})
+        return None
+    from ..taught import points_moved
+    found = points_moved(cf, sim, sol.pose, solution=sol.as_dict())
+    for row in found["points"] + [found.get("worst") or {}]:
+        if "file" in row:       # named as the cell's files are, not where the package lies
+            row["file"] = Path(os.path.relpath(row["file"], root)).as_posix()
+    return found
 
 
-def _program(cell: Cell, root: Path, sim, sol):
-    """The TP program that sets the FANUC cell's frame, its register one that
-    the backup's POSREG.VA shows unused, the frame's comment kept."""
-    from ..vendors.fanuc.program import program
-
-    return program(sol.pose, cell.frame, comment=sim.label,
-                   posreg=str(root / cell.posreg) if cell.posreg else None, out=PROGRAM_FILE)
+def _program(cell: Cell, root: Path, sim, sol, folder: Path | None, skipped: list):
+    """The program that sets the measured frame, by the vendor's program
+    writer (the bytes ``ucsio program`` writes, as ``batch --patch-dir`` writes
+    them beside a listing's copy), where the cell's vendor has one: into the
+    cell's folder where one is written and the solution accepted, else into a
+    temporary folder, so that the demo writes nothing. FANUC: its register
+    one that the backup's POSREG.VA shows unused, the frame's comment kept."""
+    writer = vendors.get(cell.vendor).program_writer
+    if writer is None:
+        skipped.append({"step": "program", "why": vendors.missing(cell.vendor, "program writer")
+                        + f": {cell.program_file} is not generated"})
+        return None
+    posreg = str(root / cell.posreg) if cell.posreg else None
+    if folder is not None and sol.accepted:
+        made = writer(sol.pose, sim, str(folder), posreg=posreg)
+        written = made.written
+    else:
+        import tempfile
+        with tempfile.TemporaryDirectory() as tmp:
+            made = writer(sol.pose, sim, tmp, posreg=posreg)
+        written = None
+    info = made.as_dict()
+    prog = {"file": os.path.basename(made.written), "name": info["name"],
+            "frame": info["frame"], "text": info["text"],
+            "written": str(written) if written else None}
+    if info.get("pr") is not None:          # FANUC: the position register it fills
+        pr_from = info.get("pr_from")
+        prog["pr"] = info["pr"]
+        prog["pr_from"] = Path(pr_from).name if pr_from and pr_from != "--pr" else pr_from
+    return prog
 
 
 def _with_tcp(cf, result, tool: str, tcp):
@@ -188,38 +266,16 @@ def _mkdir(folder: Path) -> None:
                          file=str(folder)) from None
 
 
-def replay_script(cell: Cell, label: str | None = None) -> str:
+def replay_script(cell: Cell, label: str | None = None, skipped=()) -> str:
     """The demo's steps for one cell as the commands a user types (``label``:
-    the frame's, which the FANUC program keeps as its comment)."""
+    the frame's, which the FANUC program keeps as its comment). A step in
+    ``skipped`` (``{"step", "why"}``: what this ucsio cannot do yet) is
+    written as a comment saying why, so that the script runs what can run."""
     ctl = Path(cell.controller).name
     meas = Path(cell.measurement).name
     q = _sh
-    if cell.set_by_program:
-        robot = Path(cell.robot or "").name
-        posreg = Path(cell.posreg or "").name
-        return "\n".join([
-            "#!/bin/sh",
-            f"# ucsio demo, cell {cell.name}: {cell.story}",
-            "# Every step of the demo by hand, in this folder. The laser points come from the",
-            f"# tracker's point table, the robot's from the measurement program {robot} (each",
-            f"# position taught with the reflector tool {cell.tool}); the controller does not",
-            "# load .va files: a TP program sets the frame.",
-            "set -e",
-            'cd "$(dirname "$0")"',
-            "# 1. solve: Horn's method, leave-one-out outlier exclusion",
-            f"ucsio solve --laser {q(meas)} --robot {q(robot)} --config {q(ctl)} "
-            f"--tool {q(ctl + ':' + cell.tool)} -o solution.json",
-            "# 2. diff: the simulated frame against the measured one, and the taught points it moves",
-            f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json --points || true",
-            f"# 3. write-back: a TP program that sets {cell.frame} (a register {posreg} shows unused)",
-            f"ucsio program solution.json --frame {q(cell.frame)} --posreg {q(posreg)} "
-            + (f"--comment {q(label)} " if label else "") + f"-o {PROGRAM_FILE}",
-            f"ucsio frames {PROGRAM_FILE}",
-            "# 4. review: a copy of the listing with the measured frame, against the original",
-            f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json "
-            f"-o {q('patched/' + ctl)}",
-            f"ucsio diff {q(ctl)} {q('patched/' + ctl)} || true",
-            ""])
+    if cell.robot is not None and not cell.tcp_solve:
+        return _replay_with_tool(cell, label, {s["step"]: s["why"] for s in skipped})
     if cell.robot is not None:
         robot = Path(cell.robot).name
         return "\n".join([
@@ -265,21 +321,84 @@ def replay_script(cell: Cell, label: str | None = None) -> str:
         ""])
 
 
+def _replay_with_tool(cell: Cell, label: str | None, skipped: dict[str, str]) -> str:
+    """replay.sh of a cell measured where it lives with a tool of the
+    controller (FANUC, Yaskawa): solve, diff with the taught points, the
+    program that sets the frame, the patched copy. A step the cell's vendor
+    cannot do yet is a comment; with the solve, every step after it."""
+    ctl = Path(cell.controller).name
+    cfg = Path(cell.config or cell.controller).name
+    meas, robot = Path(cell.measurement).name, Path(cell.robot or "").name
+    q = _sh
+    no_solve = skipped.get("solve")
+
+    def step(command: str, why: str | None = None) -> str:
+        if no_solve:                # said once above: every step needs the solution
+            return f"#   {command}"
+        return command if why is None else f"# not run yet ({why}):\n#   {command}"
+
+    review = vendors.get(cell.vendor).review_copy_warning is not None
+    lines = [
+        "#!/bin/sh",
+        f"# ucsio demo, cell {cell.name}: {cell.story}",
+        "# Every step of the demo by hand, in this folder. The laser points come from the",
+        f"# tracker's point table, the robot's from the measurement program {robot} (each",
+        f"# position taught with the reflector tool {cell.tool} of {cfg}).",
+        "set -e",
+        'cd "$(dirname "$0")"']
+    if no_solve:
+        lines += [f"# Not run yet: {no_solve}.",
+                  "# Every step needs the solution: the commands as they will run, commented out."]
+    lines += [
+        "# 1. solve: Horn's method, leave-one-out outlier exclusion",
+        step(f"ucsio solve --laser {q(meas)} --robot {q(robot)} --config {q(cfg)} "
+             f"--tool {q(cfg + ':' + cell.tool)} -o solution.json"),
+        "# 2. diff: the simulated frame against the measured one"
+        + (", and the taught points it moves" if cell.points else "")]
+    diff = f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json"
+    if cell.points and "points" in skipped and not no_solve:
+        lines += [step(diff + " || true"), step(diff + " --points || true", skipped["points"])]
+    else:
+        lines.append(step(diff + (" --points" if cell.points else "") + " || true"))
+    if cell.program_file:
+        program = f"ucsio program solution.json --frame {q(cell.frame)} "
+        if cell.posreg:         # FANUC: a register the listing shows unused
+            program += f"--posreg {q(Path(cell.posreg).name)} "
+        if cell.comment and label:
+            program += f"--comment {q(label)} "
+        lines += [f"# 3. write-back: a program that sets {cell.frame} on the controller",
+                  step(program + f"-o {q(cell.program_file)}", skipped.get("program")),
+                  step(f"ucsio frames {q(cell.program_file)}", skipped.get("program"))]
+    patch = f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json"
+    if review:
+        lines += ["# 4. review: a copy of the file with the measured frame, against the "
+                  "original (the controller does not load it)"]
+    else:
+        lines += ["# 4. patch: preview, then write a patched copy (the input stays as it is)",
+                  step(patch)]
+    lines += [step(f"{patch} -o {q('patched/' + ctl)}"),
+              step(f"ucsio diff {q(ctl)} {q('patched/' + ctl)} || true"), ""]
+    return "\n".join(lines)
+
+
 def _sh(word: str) -> str:
     import shlex
     return shlex.quote(word)
 
 
-def write_inputs(cell: Cell, root: Path, folder: Path, sol, label: str | None = None) -> None:
-    """The cell's inputs as shipped, the solution (as ``solve -o`` writes it)
-    and replay.sh, so every step can be replayed by hand."""
+def write_inputs(cell: Cell, root: Path, folder: Path, sol, label: str | None = None,
+                 skipped=()) -> None:
+    """The cell's inputs as shipped, the solution (as ``solve -o`` writes it;
+    none where the cell was not solved) and replay.sh, so every step can be
+    replayed by hand."""
     from ..files import atomic_write, atomic_write_text
-    from ..method.solution import solution_text
-    for rel in (cell.controller, cell.measurement, cell.robot, *cell.extra):
+    for rel in (cell.controller, cell.config, cell.measurement, cell.robot, *cell.extra):
         if rel is not None:
             atomic_write(folder / Path(rel).name, (root / rel).read_bytes())
-    atomic_write_text(folder / "solution.json", solution_text(sol.as_dict()))
-    atomic_write_text(folder / "replay.sh", replay_script(cell, label))
+    if sol is not None:
+        from ..method.solution import solution_text
+        atomic_write_text(folder / "solution.json", solution_text(sol.as_dict()))
+    atomic_write_text(folder / "replay.sh", replay_script(cell, label, skipped))
     try:
         os.chmod(folder / "replay.sh", 0o755)
     except OSError:
@@ -288,9 +407,11 @@ def write_inputs(cell: Cell, root: Path, folder: Path, sol, label: str | None = 
 
 def run_demo(out: str | os.PathLike | None = None,
              tolerance: float | None = None) -> dict[str, Any]:
-    """Every shipped cell end to end; ``out``: also write patched copies there."""
+    """Every shipped cell end to end; ``out``: also write patched copies there.
+    ``not_run``: the cells whose robot side this ucsio cannot read yet."""
     with ExitStack() as stack:
         root = stack.enter_context(resources.as_file(data_root()))
-        cells = [run_cell(c, Path(root), out, tolerance) for c in CELLS]
-    return {"cells": cells, "ok": all(c["ok"] for c in cells),
-            "out": str(out) if out is not None else None}
+        results = [run_cell(c, Path(root), out, tolerance) for c in CELLS]
+    cells = [r for r in results if "solve" in r]
+    return {"cells": cells, "not_run": [r for r in results if "solve" not in r],
+            "ok": all(c["ok"] for c in cells), "out": str(out) if out is not None else None}
