@@ -21,9 +21,15 @@ def not_run() -> list[str]:
         return [c.name for c in CELLS if robot_side_missing(c, Path(root))]
 
 
+# the date a generated Yaskawa job carries: the same in the demo and in its replay
+EPOCH = {"SOURCE_DATE_EPOCH": "1764763200"}
+
+
 def run(tmp_path, *args):
+    import os
     return subprocess.run([sys.executable, "-m", "ucsio", "demo", *args], cwd=tmp_path,
-                          capture_output=True, text=True, timeout=120)
+                          capture_output=True, text=True, timeout=120,
+                          env=dict(os.environ, **EPOCH))
 
 
 def test_demo_data_is_package_data():
@@ -111,7 +117,8 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
     shim.write_text(f"#!/bin/sh\nexec {sys.executable} -m ucsio \"$@\"\n")
     shim.chmod(0o755)
     src = str(Path(__file__).resolve().parents[1] / "src")
-    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ['PATH']}", PYTHONPATH=src)
+    env = dict(os.environ, PATH=f"{bindir}{os.pathsep}{os.environ['PATH']}", PYTHONPATH=src,
+               **EPOCH)
     for cell in CELLS:
         folder = tmp_path / "out" / Path(cell.controller).parent.name
         ctl, meas = Path(cell.controller).name, Path(cell.measurement).name
@@ -137,7 +144,7 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
         assert res.returncode == 0, res.stderr
         assert json.loads((replay / "solution.json").read_text())["frame"] == demo_solution["frame"]
         assert (replay / "patched" / ctl).read_bytes() == demo_patched
-        for m in made[1:]:                  # the patched copy, the FANUC program: byte for byte
+        for m in made[1:]:                  # the patched copy, the program: byte for byte
             assert (replay / m).read_bytes() == demo_made[m], m
         assert f"~ {cell.frame}" in res.stdout or "value changed" in res.stdout
 

@@ -128,52 +128,27 @@ def _cell():
     return cell
 
 
-def stand_in_job_reader(path, *, config=None, load=None, **_):
-    """A test's stand-in for Yaskawa's reader of robot positions (a .JBI
-    reader is being written beside this): BASE-type positions only, each the
-    flange · the tool its ///TOOL names in ``config``, so flange = T · tool⁻¹."""
-    from pathlib import Path
-
-    from ucsio.vendors.common.robot import RobotPose, RobotPoses
-    tools = load(config)
-    poses = []
-    text = Path(path).read_text()
-    for name, (postype, _user, tool, v) in groups(text).items():
-        assert postype == "BASE"
-        line = next(k + 1 for k, ln in enumerate(text.splitlines()) if ln.startswith(name + "="))
-        T, flange_tool = np.eye(4), np.eye(4)
-        T[:3, :3], T[:3, 3] = yaskawa_rotation(*v[3:]).as_matrix(), v[:3]
-        pose = tools.frame(f"UT{tool}").pose
-        flange_tool[:3, :3], flange_tool[:3, 3] = pose.matrix, pose.t
-        poses.append(RobotPose(name, name, line, 1, T @ np.linalg.inv(flange_tool)))
-    return RobotPoses(str(path), "yaskawa", poses, "yaskawa")
-
-
 @pytest.fixture
-def job_reader(monkeypatch):
-    """Yaskawa with a reader of robot positions in .JBI files: what the demo's
-    R05 waits for; the demo's own code is not touched."""
+def no_job_reader(monkeypatch):
+    """Yaskawa as it was before it read its jobs' positions: the capability
+    None, the job a file it does not read (what a vendor without a robot
+    reader looks like to the demo)."""
     from ucsio import vendors
-    vendor = vendors.get("yaskawa")
-    if vendor.robot_positions is None:
-        monkeypatch.setattr(vendor, "robot_positions", stand_in_job_reader, raising=False)
-        monkeypatch.setattr(vendor, "robot_suffixes", (".jbi",), raising=False)
-        entry = vendors.BY_NAME["yaskawa"]
-        monkeypatch.setattr(entry, "suffixes", (*entry.suffixes, ".jbi"))
-    return vendor
+    from ucsio.parsing import foreign
+    monkeypatch.setattr(vendors.get("yaskawa"), "robot_positions", None)
+    monkeypatch.setattr(foreign, "KNOWN", (("a Yaskawa Motoman job", "Yaskawa", (".jbi",),
+                                            r"/JOB\b"), *foreign.KNOWN))
 
 
-def test_r05_not_run_says_what_is_missing_by_the_capability(tmp_path):
-    """Without a reader of Yaskawa's robot positions, R05 is listed as not
-    run, with the capability's words and the reader's own refusal of the job;
-    --out still writes its inputs and a replay.sh whose steps are commented
-    out, so it runs. Keyed on the capability: with the reader, R05 runs."""
-    from ucsio import vendors
-    from ucsio.demo import data_root, run_cell
-    if vendors.get("yaskawa").robot_positions is not None:
-        pytest.skip("Yaskawa reads its jobs' positions: test_r05_runs_every_step... holds")
+def test_r05_not_run_says_what_is_missing_by_the_capability(no_job_reader, tmp_path):
+    """Without a reader of the vendor's robot positions, a cell is listed as
+    not run, with the capability's words and the reader's own refusal of the
+    job; --out still writes its inputs and a replay.sh whose steps are
+    commented out, so it runs. Keyed on the capability, not the vendor."""
     import subprocess
     from pathlib import Path
+
+    from ucsio.demo import data_root, run_cell
     with resources.as_file(data_root()) as root:
         got = run_cell(_cell(), Path(root), out=tmp_path)
     assert "solve" not in got and got["step"] == "solve"
@@ -181,19 +156,20 @@ def test_r05_not_run_says_what_is_missing_by_the_capability(tmp_path):
                                  "a Yaskawa Motoman job (JBI)")
     folder = tmp_path / "R05_yaskawa"
     assert sorted(p.name for p in folder.iterdir()) == [
-        "MEASURE.JBI", "PLACE.JBI", "TOOL.CND", "UFRAME.CND", "fixture_points.txt", "replay.sh"]
+        "MEASURE.JBI", "PLACE.JBI", "TOOL.CND", "UFRAME.CND", "VAR.DAT", "fixture_points.txt",
+        "replay.sh"]
     script = (folder / "replay.sh").read_text()
-    assert "#   ucsio program solution.json --frame UF2 -o SETUF2.JBI" in script
+    assert "#   ucsio program solution.json --frame UF2 --var VAR.DAT -o SETUF2.JBI" in script
     assert subprocess.run(["sh", str(folder / "replay.sh")], capture_output=True).returncode == 0
 
 
-def test_r05_runs_every_step_its_vendor_can_do(job_reader, tmp_path):
-    """With a reader of the job's positions (here a test's stand-in, BASE
-    positions through ///TOOL's tool), R05 runs through the same code as the
-    other cells: the true UF2 comes back, C00004's blunder is excluded, the
-    diff passes; the patch preview rewrites UF2's ////BUSER line alone and
-    warns that the taught points no longer give the frame. Taught points and
-    the SETUF job run where the vendor has them, else say what is missing."""
+def test_r05_runs_every_step(tmp_path):
+    """R05 end to end: the true UF2 comes back from the tracker's table and
+    MEASURE.JBI, C00004's blunder is excluded, the diff passes; PLACE.JBI's
+    five USER positions in UF2 move (its PULSE and BASE ones are skipped);
+    the SETUF job loads three P variables VAR.DAT shows unused and reads back
+    as the solution; the patch preview rewrites UF2's ////BUSER line alone and
+    warns that the taught points no longer give the frame."""
     from pathlib import Path
 
     from ucsio.demo import data_root, run_cell
@@ -205,7 +181,26 @@ def test_r05_runs_every_step_its_vendor_can_do(job_reader, tmp_path):
     assert [m[k] for k in "xyz"] == pytest.approx(TRUE_UF[:3], abs=0.15)
     got = Rotation.from_quat(m["q"], scalar_first=True)
     assert (got * yaskawa_rotation(*TRUE_UF[3:]).inv()).magnitude() < np.radians(0.02)
-    assert cell["diff"]["pass"] and cell["ok"]
+    assert cell["diff"]["pass"] and cell["ok"] and cell["skipped"] == []
+    # PLACE.JBI: C00002..C00006 in UF2 move; C00000 (PULSE) and C00001 (BASE) do not
+    points = cell["points"]
+    assert points["points_moved"]["count"] == 5 and points["points_skipped"] == 2
+    assert sorted(p["name"] for p in points["points"]) == [f"C{k:05d}" for k in range(2, 7)]
+    # the SETUF job: P125..P127, the highest three VAR.DAT leaves unused (P000..P015 used)
+    prog = cell["program"]
+    assert prog["p"] == [125, 126, 127] and prog["p_from"] == "VAR.DAT"
+    job = tmp_path / "R05_yaskawa" / "SETUF2.JBI"
+    assert job.read_bytes().startswith(b"/JOB\r\n//NAME SETUF2\r\n")
+    assert b"MFRAME UF#(2) P125 P126 P127\r\n" in job.read_bytes()
+    rows = [[float(v) for v in ln.split("=")[1].split(",")]
+            for ln in job.read_text().splitlines() if ln.startswith("P00")]
+    org, xx, xy = (np.array(r[:3]) for r in rows)
+    x = (xx - org) / np.linalg.norm(xx - org)
+    z = np.cross(x, xy - org)
+    z /= np.linalg.norm(z)
+    built = Rotation.from_matrix(np.column_stack([x, np.cross(z, x), z]))
+    assert org == pytest.approx([m["x"], m["y"], m["z"]], abs=1e-3)
+    assert (built * got.inv()).magnitude() < np.radians(1e-3)
     diff = cell["patch"]["diff"]
     assert "-////BUSER 1450.000,390.000,610.000,0.0000,0.0000,90.0000" in diff
     assert [ln[:15] for ln in diff.splitlines() if ln[:1] in "+-" and ln[:3] not in
@@ -213,15 +208,3 @@ def test_r05_runs_every_step_its_vendor_can_do(job_reader, tmp_path):
     assert any("RORG" in w for w in cell["patch"]["warnings"])
     patched = load(tmp_path / "R05_yaskawa" / "patched" / "UFRAME.CND")
     assert patched.frame("UF2").pose.t == pytest.approx([m["x"], m["y"], m["z"]], abs=5e-4)
-    skipped = {s["step"]: s["why"] for s in cell["skipped"]}
-    if job_reader.taught_points is None:
-        assert skipped["points"] == "Yaskawa has no reader of taught points yet"
-    else:       # PLACE.JBI's five USER positions move; the PULSE and the BASE one do not
-        assert cell["points"]["points_moved"]["count"] == 5
-    if job_reader.program_writer is None:
-        assert skipped["program"] == ("Yaskawa has no program writer yet: SETUF2.JBI is not "
-                                      "generated")
-        assert "not run yet (Yaskawa has no program writer yet" in \
-            (tmp_path / "R05_yaskawa" / "replay.sh").read_text()
-    else:
-        assert (tmp_path / "R05_yaskawa" / "SETUF2.JBI").read_bytes().startswith(b"/JOB\r\n")

@@ -316,3 +316,16 @@ def test_json_and_the_api(tmp_path, capsys):
     assert made.program.p == [5, 6, 7] and made.program.file == str(target)
     assert target.read_bytes() == made.text.encode()
     assert made.program.pose.rx == pytest.approx(178.25, abs=1e-3)
+
+
+def test_source_date_epoch_makes_the_job_reproducible(tmp_path, capsys, monkeypatch):
+    """///DATE is now, or SOURCE_DATE_EPOCH's time in UTC where it is set:
+    one solution made twice gives the same bytes (a job kept in git)."""
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1764763200")      # 2025-12-03 12:00 UTC
+    jobs = []
+    for _ in range(2):
+        code, out, err = cli(capsys, "program", solution(tmp_path), "--frame", "UF2", "--p",
+                             "100", "--vendor", "yaskawa")
+        assert code == 0, err
+        jobs.append(out)
+    assert jobs[0] == jobs[1] and "\r\n///DATE 2025/12/03 12:00\r\n" in jobs[0]

@@ -144,7 +144,7 @@ def print_cell(cell: dict) -> None:
           f"(tolerance {d.get('tolerance', defaults.TOLERANCE):g} mm)")
     skipped = {s["step"]: s["why"] for s in cell.get("skipped") or ()}
     if cell.get("points") is not None:
-        print(indent(points_text({**cell["points"], "name": cell["frame"]})))
+        print(indent(points_text({**cell["points"], "name": cell["frame"], "vendor": cell["vendor"]})))
     elif "points" in skipped:
         print(f"   taught points: not run: {skipped['points']}")
     print()
@@ -171,8 +171,12 @@ def print_program(program: dict | None, why: str | None) -> None:
     if program is None:
         print(f"3. write-back by a generated program: not run: {why}")
         return
-    register = (f" (PR[{program['pr']}]: unused in {program['pr_from']})"
-                if program.get("pr") is not None else "")
+    register = ""
+    if program.get("pr") is not None:       # FANUC: the position register it fills
+        register = f" (PR[{program['pr']}]: unused in {program['pr_from']})"
+    elif program.get("p") is not None:     # Yaskawa: the P variables it loads
+        register = (" (" + " ".join(f"P{n:03d}" for n in program["p"])
+                    + f": unused in {program['p_from']})")
     print(f"3. write-back: {program['file']}, a program that sets {program['frame']}"
           f"{register}, as the controller writes its programs")
     print(indent(program["text"].replace("\r\n", "\n").rstrip("\n")))

@@ -45,7 +45,9 @@ class Cell:
                                  # and the TCP is solved with the frame (and patched into tool)
     tcp_solve: bool = True       # with robot: False takes the tool's TCP as it is
     extra: tuple[str, ...] = ()  # other files of the backup (FANUC: POSREG.VA, a program)
-    posreg: str | None = None    # FANUC: the listing program() picks an unused register from
+    # the backup's file ``ucsio program`` takes free registers or variables from:
+    # (its option, path): FANUC's ("posreg", POSREG.VA), Yaskawa's ("var", VAR.DAT)
+    program_input: tuple[str, str] | None = None
     config: str | None = None    # the file that holds the tool, where not the controller file
     points: bool = False         # diff with the positions the backup's programs teach in frame
     program_file: str | None = None  # the program that sets the frame, where the vendor has one
@@ -73,14 +75,16 @@ CELLS = (
          "FANUC palletising cell, from the tracker's point table and the measurement program "
          "MEASURE.LS: UF1 'PALLET' as simulated vs measured, set by a generated TP program",
          robot="R04_fanuc/MEASURE.LS", tcp_solve=False,
-         extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"), posreg="R04_fanuc/POSREG.VA",
+         extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"),
+         program_input=("posreg", "R04_fanuc/POSREG.VA"),
          points=True, program_file="SET_UF1.LS", comment=True),
     Cell("R05", "R05_yaskawa/UFRAME.CND", "UF2", "R05_yaskawa/fixture_points.txt", "UT3",
          "Yaskawa YRC1000 at an assembly fixture, from the tracker's point table and the "
          "measurement job MEASURE.JBI: UF2 'FIXTURE' as simulated vs measured, set by a "
          "generated SETUF job or by patching UFRAME.CND's BUSER",
          robot="R05_yaskawa/MEASURE.JBI", tcp_solve=False, config="R05_yaskawa/TOOL.CND",
-         extra=("R05_yaskawa/PLACE.JBI",), points=True, program_file="SETUF2.JBI"),
+         extra=("R05_yaskawa/PLACE.JBI", "R05_yaskawa/VAR.DAT"),
+         program_input=("var", "R05_yaskawa/VAR.DAT"), points=True, program_file="SETUF2.JBI"),
 )
 
 
@@ -213,34 +217,38 @@ def _points(cell: Cell, root: Path, cf, sim, sol, skipped: list) -> dict | None:
 
 
 def _program(cell: Cell, root: Path, sim, sol, folder: Path | None, skipped: list):
-    """The program that sets the measured frame, by the vendor's program
-    writer (the bytes ``ucsio program`` writes, as ``batch --patch-dir`` writes
-    them beside a listing's copy), where the cell's vendor has one: into the
-    cell's folder where one is written and the solution accepted, else into a
-    temporary folder, so that the demo writes nothing. FANUC: its register
-    one that the backup's POSREG.VA shows unused, the frame's comment kept."""
-    writer = vendors.get(cell.vendor).program_writer
-    if writer is None:
+    """The program that sets the measured frame, as ``ucsio program`` writes
+    it (replay.sh's step 3), where the cell's vendor has a program writer:
+    into the cell's folder where one is written and the solution accepted,
+    else only made, so that the demo writes nothing. Its file of the backup
+    (``program_input``: FANUC's POSREG.VA, Yaskawa's VAR.DAT) says which
+    register or variables are free; FANUC keeps the frame's comment."""
+    vendor = vendors.get(cell.vendor)
+    if vendor.frame_program is None:
         skipped.append({"step": "program", "why": vendors.missing(cell.vendor, "program writer")
                         + f": {cell.program_file} is not generated"})
         return None
-    posreg = str(root / cell.posreg) if cell.posreg else None
-    if folder is not None and sol.accepted:
-        made = writer(sol.pose, sim, str(folder), posreg=posreg)
-        written = made.written
-    else:
-        import tempfile
-        with tempfile.TemporaryDirectory() as tmp:
-            made = writer(sol.pose, sim, tmp, posreg=posreg)
-        written = None
+    options: dict[str, Any] = {}
+    if cell.program_input is not None:
+        option, path = cell.program_input
+        options[option] = str(root / path)
+    if cell.comment and sim.label:
+        options["comment"] = sim.label
+    target = folder / cell.program_file if folder is not None and sol.accepted else None
+    made = vendor.frame_program(sol.pose, cell.frame, tcp=None, source="solution.json",
+                                output=str(target or cell.program_file), **options)
+    if target is not None:
+        from ..files import atomic_write, write_target
+        made.written, _ = atomic_write(write_target(str(target)), made.data)
     info = made.as_dict()
-    prog = {"file": os.path.basename(made.written), "name": info["name"],
-            "frame": info["frame"], "text": info["text"],
-            "written": str(written) if written else None}
-    if info.get("pr") is not None:          # FANUC: the position register it fills
-        pr_from = info.get("pr_from")
-        prog["pr"] = info["pr"]
-        prog["pr_from"] = Path(pr_from).name if pr_from and pr_from != "--pr" else pr_from
+    prog = {"file": cell.program_file, "name": info["name"], "frame": info["frame"],
+            "text": info["text"], "written": str(target) if target is not None else None}
+    for key in ("pr", "p"):         # FANUC's register, Yaskawa's P variables
+        if info.get(key) is not None:
+            found = info.get(key + "_from")
+            prog[key] = info[key]
+            prog[key + "_from"] = Path(found).name if found and not found.startswith("--") \
+                else found
     return prog
 
 
@@ -362,8 +370,9 @@ def _replay_with_tool(cell: Cell, label: str | None, skipped: dict[str, str]) ->
         lines.append(step(diff + (" --points" if cell.points else "") + " || true"))
     if cell.program_file:
         program = f"ucsio program solution.json --frame {q(cell.frame)} "
-        if cell.posreg:         # FANUC: a register the listing shows unused
-            program += f"--posreg {q(Path(cell.posreg).name)} "
+        if cell.program_input:  # the backup's file that says what is free
+            option, path = cell.program_input
+            program += f"--{option} {q(Path(path).name)} "
         if cell.comment and label:
             program += f"--comment {q(label)} "
         lines += [f"# 3. write-back: a program that sets {cell.frame} on the controller",
