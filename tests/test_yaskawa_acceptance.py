@@ -1,0 +1,73 @@
+"""Issue 27 (Yaskawa) as its users judge it: the defects an acceptance
+test found, each with its minimal reproducer.
+
+Fixtures are written here in the corpus's style (CRLF); numbers are checked
+against scipy's Rotation (R = Rz(rz)·Ry(ry)·Rx(rx), ``from_euler('xyz')``).
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from test_yaskawa import cli, crlf, uframe, write
+from test_yaskawa_patch import solution
+from ucsio.geometry.frames import Pose
+
+RCONF = "///RCONF 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n"
+INST = "//INST\n///DATE 2026/11/30 09:12\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\nEND\n"
+UF1 = (1200.0, -300.0, 150.0, 2.0, -3.0, 30.0)
+UF2_ON_UF1 = (100.0, 50.0, 20.0, 0.0, 5.0, -20.0)
+
+
+def six(values) -> str:
+    return "%.3f,%.3f,%.3f,%.4f,%.4f,%.4f" % tuple(values)
+
+
+def matrix(x, y, z, rx, ry, rz) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3] = Rotation.from_euler("xyz", [rx, ry, rz], degrees=True).as_matrix()
+    m[:3, 3] = (x, y, z)
+    return m
+
+
+def pose_of(m: np.ndarray) -> Pose:
+    q = Rotation.from_matrix(m[:3, :3]).as_quat()            # x, y, z, w
+    return Pose.from_quat(*m[:3, 3], (q[3], q[0], q[1], q[2]))
+
+
+# -- taught points of a frame that another frame is defined on -------------------------------
+def frame_on_frame_backup(tmp_path):
+    """UF2 defined on UF1 (///BASICFRM 1,19,1); a job with one position in UF1
+    and one in UF2."""
+    write(tmp_path, "UFRAME.CND", crlf(uframe(1, "TABLE", six(UF1))
+                                       + uframe(2, "FIXTURE", six(UF2_ON_UF1), "1,19,1")))
+    pos = ("///TOOL 0\n///USER 1\n///POSTYPE USER\n///RECTAN\n" + RCONF
+           + "C00000=10.000,20.000,30.000,0.0000,0.0000,0.0000\n"
+           + "///USER 2\nC00001=300.000,-40.000,5.000,0.0000,0.0000,0.0000\n")
+    write(tmp_path, "PLACE.JBI", crlf("/JOB\n//NAME PLACE\n//POS\n///NPOS 2,0,0,0,0,0\n"
+                                      + pos + INST))
+    return tmp_path / "UFRAME.CND"
+
+
+def test_positions_in_a_frame_defined_on_the_measured_one_move_with_it(tmp_path, capsys):
+    """UF2 is defined on UF1: when UF1 turns by 1 deg about its z, a position
+    taught in UF2 moves with it (the controller keeps UF2 in UF1), by
+    2·|q_xy|·sin(0.5 deg), q the point in UF1's coordinates."""
+    cnd = frame_on_frame_backup(tmp_path)
+    turned = matrix(*UF1) @ matrix(0, 0, 0, 0, 0, 1)
+    measured = solution(tmp_path, pose_of(turned))
+    code, out, err = cli(capsys, "diff", cnd, "--frame", "UF1", "--measured", measured,
+                         "--points", "--json")
+    assert code == 0, err
+    moved = {p["name"]: p["moved"] for p in json.loads(out)["points"]}
+    in_uf1 = {"C00000": np.array([10.0, 20.0, 30.0]),
+              "C00001": (matrix(*UF2_ON_UF1) @ [300.0, -40.0, 5.0, 1.0])[:3]}
+    for name, p in in_uf1.items():
+        want = 2 * math.hypot(p[0], p[1]) * math.sin(math.radians(0.5))
+        assert math.isclose(moved[name], want, rel_tol=1e-9), name
+    # and patch's warning counts both
+    code, out, err = cli(capsys, "patch", cnd, "--frame", "UF1", "--measured", measured)
+    assert code == 0 and "2 positions of the backup's jobs" in err
