@@ -71,3 +71,36 @@ def test_positions_in_a_frame_defined_on_the_measured_one_move_with_it(tmp_path,
     # and patch's warning counts both
     code, out, err = cli(capsys, "patch", cnd, "--frame", "UF1", "--measured", measured)
     assert code == 0 and "2 positions of the backup's jobs" in err
+
+
+# -- program: the P variables of the job it replaces -------------------------------------------
+def a_var_dat(tmp_path, rows_used: int, rows: int):
+    used = '"RECTAN"0,0,4,000000000000000000000000,0,16,1.000,2.000,3.000,0.0000,0.0000,0.0000,0.0000,0.0000\n'
+    write(tmp_path, "VAR.DAT", crlf("//VAR\n///P\n" + used * rows_used
+                                    + '"UNUSED"\n' * (rows - rows_used)))
+    return tmp_path / "VAR.DAT"
+
+
+def mframe_line(path) -> str:
+    return next(line for line in path.read_text().splitlines() if line.startswith("MFRAME"))
+
+
+def test_program_run_again_takes_the_same_p_variables(tmp_path, capsys):
+    """The job being replaced (-o) is not the cell's: running the demo's
+    replay in its folder wrote P122-P124 instead of the P125-P127 it said,
+    as the previous SETUF2.JBI counted as a user of P125-P127. A folder
+    named like a job beside VAR.DAT is no job (it stopped the run)."""
+    var = a_var_dat(tmp_path, 4, 12)
+    measured = solution(tmp_path, Pose.from_abc(900.0, 200.0, 300.0, 35.0, -20.0, 10.0))
+    (tmp_path / "OLD.JBI").mkdir()
+    out = tmp_path / "SETUF2.JBI"
+    for _ in range(2):
+        code, _, err = cli(capsys, "program", measured, "--frame", "UF2", "--var", var,
+                           "-o", out)
+        assert code == 0, err
+        assert mframe_line(out) == "MFRAME UF#(2) P009 P010 P011"
+    # another job beside that uses them still counts
+    (tmp_path / "KEEP.JBI").write_bytes(out.read_bytes().replace(b"SETUF2", b"KEEP"))
+    code, _, err = cli(capsys, "program", measured, "--frame", "UF2", "--var", var, "-o", out)
+    assert code == 0, err
+    assert mframe_line(out) == "MFRAME UF#(2) P006 P007 P008"
