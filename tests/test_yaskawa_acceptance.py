@@ -104,3 +104,25 @@ def test_program_run_again_takes_the_same_p_variables(tmp_path, capsys):
     code, _, err = cli(capsys, "program", measured, "--frame", "UF2", "--var", var, "-o", out)
     assert code == 0, err
     assert mframe_line(out) == "MFRAME UF#(2) P006 P007 P008"
+
+
+# -- solve --robot: a user frame of another robot ---------------------------------------------
+def test_a_user_frame_of_another_robot_is_refused_at_the_position(tmp_path):
+    """UF1 belongs to robot 2 (///GROUP 0,1,...): a position of an RB1 job
+    in it was composed as if UF1 stood in robot 1's base, a wrong flange
+    pose without a word. Refused at its line:col; an RB2 job reads it."""
+    from test_yaskawa import GROUP2, tool
+    from ucsio.readers.robot import read_robot
+    write(tmp_path, "UFRAME.CND", crlf(uframe(1, "R2 TABLE", six(UF1), group=GROUP2)))
+    write(tmp_path, "TOOL.CND", crlf(tool(0, "", six([0] * 6), False)))
+    pos = ("///TOOL 0\n///USER 1\n///POSTYPE USER\n///RECTAN\n" + RCONF
+           + "C00000=10.000,20.000,30.000,0.0000,0.0000,0.0000\n")
+    configs = [str(tmp_path / "TOOL.CND"), str(tmp_path / "UFRAME.CND")]
+    for robot, problem in (("RB1", "is robot 2's user frame"), ("RB2", None)):
+        job = "/JOB\n//NAME M\n//POS\n///NPOS 1,0,0,0,0,0\n" + pos + INST.replace("RB1", robot)
+        write(tmp_path, "M.JBI", crlf(job))
+        got = read_robot(tmp_path / "M.JBI", config=configs).poses[0].problem
+        if problem is None:
+            assert got is None
+        else:
+            assert problem in got.message and (got.line, got.col) == (10, 8)
