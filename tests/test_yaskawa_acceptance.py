@@ -126,3 +126,20 @@ def test_a_user_frame_of_another_robot_is_refused_at_the_position(tmp_path):
             assert got is None
         else:
             assert problem in got.message and (got.line, got.col) == (10, 8)
+
+
+# -- diff of two files: rx, ry, rz are the rotation ----------------------------------------
+def test_rx_180_and_minus_180_are_one_frame(tmp_path, capsys):
+    """rx 180 and rx -180 are one rotation: the diff listed `rx: 180 -> -180`
+    as a change of the frame (and rounded others with %g: `rz: -179.999`)."""
+    for name, rx in (("a.CND", "180.0000"), ("b.CND", "-180.0000")):
+        write(tmp_path, name, crlf(uframe(1, "TABLE", f"1200.000,-300.000,150.000,{rx},"
+                                          "-3.0000,-179.9991")))
+    code, out, err = cli(capsys, "diff", tmp_path / "a.CND", tmp_path / "b.CND", "--json")
+    assert code == 0, err
+    assert json.loads(out)["changed"] == []
+    write(tmp_path, "b.CND", crlf(uframe(1, "TABLE", "1200.000,-300.000,150.000,180.0000,"
+                                         "-3.0000,-0.4335")))
+    code, out, err = cli(capsys, "diff", tmp_path / "a.CND", tmp_path / "b.CND")
+    assert "~ UF1 \"TABLE\" (UFRAME): value changed" in out and "rz:" not in out
+    assert "rz -179.9991" in out
