@@ -143,3 +143,21 @@ def test_rx_180_and_minus_180_are_one_frame(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", tmp_path / "a.CND", tmp_path / "b.CND")
     assert "~ UF1 \"TABLE\" (UFRAME): value changed" in out and "rz:" not in out
     assert "rz -179.9991" in out
+
+
+# -- patch of an LF-only UFRAME.CND ---------------------------------------------------------
+def test_patch_of_an_lf_only_uframe_cnd_says_it_will_not_load(tmp_path, capsys):
+    """The patch keeps the file's LF endings (every other byte stays), and
+    said nothing although such a UFRAME.CND loads on the controller as
+    empty: it warns as check does."""
+    lf = uframe(1, "TABLE", six(UF1)).encode()
+    write(tmp_path, "UFRAME.CND", lf)
+    out = tmp_path / "OUT.CND"
+    code, _, err = cli(capsys, "patch", tmp_path / "UFRAME.CND", "--frame", "UF1", "--set",
+                       "1,2,3,0,0,0", "-o", out)
+    assert code == 0 and "lf-only" in err and "load on the controller as empty" in err
+    assert b"\r" not in out.read_bytes()
+    write(tmp_path, "UFRAME.CND", crlf(uframe(1, "TABLE", six(UF1))))
+    code, _, err = cli(capsys, "patch", tmp_path / "UFRAME.CND", "--frame", "UF1", "--set",
+                       "1,2,3,0,0,0", "-o", tmp_path / "OUT2.CND")
+    assert code == 0 and "lf-only" not in err

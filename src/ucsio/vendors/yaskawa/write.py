@@ -81,6 +81,8 @@ def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: lis
                          "pendant)", file=where.get("file"), line=crc_line, col=1)
     if frame.type == "UFRAME":
         warnings.append(TAUGHT_POINTS_WARNING.format(name=frame.name) + _in_jobs(cf, frame))
+        # the patch keeps the file's line endings: say that these will not load
+        warnings += [f"{lint.message} (lf-only)" for lint in cf.lints if lint.code == "lf-only"]
 
 
 def _in_jobs(cf: ControllerFile, frame: Frame) -> str:
