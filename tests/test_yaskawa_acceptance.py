@@ -161,3 +161,21 @@ def test_patch_of_an_lf_only_uframe_cnd_says_it_will_not_load(tmp_path, capsys):
     code, _, err = cli(capsys, "patch", tmp_path / "UFRAME.CND", "--frame", "UF1", "--set",
                        "1,2,3,0,0,0", "-o", tmp_path / "OUT2.CND")
     assert code == 0 and "lf-only" not in err
+
+
+# -- diff --measured of a frame on a frame: its deltas, in Yaskawa's names --------------------
+def test_measured_diff_of_a_frame_on_a_frame_in_yaskawa_angles(tmp_path, capsys):
+    """UF2 on UF1, measured turned by 1 deg about its own z: the diff is in UF1
+    (scipy: the measured pose in UF1, its xyz Euler angles), and --json names
+    the deltas as the table does (drx dry drz beside SPEC's dc db da)."""
+    cnd = frame_on_frame_backup(tmp_path)
+    turned = matrix(*UF1) @ matrix(*UF2_ON_UF1) @ matrix(0, 0, 0, 0, 0, 1)
+    code, out, err = cli(capsys, "diff", cnd, "--frame", "UF2", "--measured",
+                         solution(tmp_path, pose_of(turned)), "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    in_uf1 = matrix(*UF2_ON_UF1) @ matrix(0, 0, 0, 0, 0, 1)
+    want = Rotation.from_matrix(in_uf1[:3, :3]).as_euler("xyz", degrees=True) - UF2_ON_UF1[3:]
+    got = [d["drx"], d["dry"], d["drz"]]
+    assert np.allclose(got, want, atol=1e-9) and got == [d["dc"], d["db"], d["da"]]
+    assert math.isclose(d["angle"], 1.0, abs_tol=1e-9) and d["dist"] < 1e-9
