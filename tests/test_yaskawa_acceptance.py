@@ -179,3 +179,25 @@ def test_measured_diff_of_a_frame_on_a_frame_in_yaskawa_angles(tmp_path, capsys)
     got = [d["drx"], d["dry"], d["drz"]]
     assert np.allclose(got, want, atol=1e-9) and got == [d["dc"], d["db"], d["da"]]
     assert math.isclose(d["angle"], 1.0, abs_tol=1e-9) and d["dist"] < 1e-9
+
+
+# -- check: a frame on a user frame that is not there -----------------------------------------
+def test_a_frame_on_a_missing_or_circular_user_frame_is_a_finding(tmp_path, capsys):
+    """UF2 on UF7 (not in the file) or UF1 and UF2 on each other: `check`
+    said nothing, the tree put them under "the file does not say"."""
+    write(tmp_path, "UFRAME.CND", crlf(uframe(1, "A", six(UF1), "1,19,2")
+                                       + uframe(2, "B", six(UF2_ON_UF1), "1,19,1")
+                                       + uframe(3, "C", six(UF2_ON_UF1), "1,19,7")
+                                       + uframe(4, "D", six(UF1))
+                                       + uframe(5, "E", six(UF2_ON_UF1), "1,19,4")))
+    code, out, err = cli(capsys, "check", tmp_path / "UFRAME.CND", "--json")
+    assert code == 1
+    found = [(f["line"], f["message"]) for f in json.loads(out)["files"][0]["lints"]
+             if f["code"] == "basicfrm-parent"]
+    assert found == [
+        (1, "UF1: defined on user frames in a circle (UF1 on UF2 on UF1): its parent is not "
+            "known"),
+        (12, "UF2: defined on user frames in a circle (UF2 on UF1 on UF2): its parent is not "
+             "known"),
+        (23, "UF3: defined on UF7 (///BASICFRM 1,19,7), which this file does not hold: its "
+             "parent is not known")]
