@@ -201,3 +201,20 @@ def test_a_frame_on_a_missing_or_circular_user_frame_is_a_finding(tmp_path, caps
              "known"),
         (23, "UF3: defined on UF7 (///BASICFRM 1,19,7), which this file does not hold: its "
              "parent is not known")]
+
+
+# -- patch TOOL.CND: the ///CRC lines are the file's ------------------------------------------
+def test_a_tool_without_its_crc_line_in_a_file_with_crc_is_refused(tmp_path, capsys):
+    """UT1 has lost its ///CRC line, UT0 has one: the file carries checksums
+    the controller checks, so UT1 is refused too, at the file's ///CRC line,
+    and nothing is written."""
+    from test_yaskawa import tool
+    data = crlf(tool(0, "GUN", six([0, 0, 365.4, 0, 0, 0]), True)
+                + tool(1, "SMR", six([0, 0, 100, 0, 0, 0]), False))
+    write(tmp_path, "TOOL.CND", data)
+    measured = solution(tmp_path, Pose.from_abc(0, 0, 0, 0, 0, 0), tcp=(1.0, 2.0, 300.0))
+    code, _, err = cli(capsys, "patch", tmp_path / "TOOL.CND", "--frame", "UT1", "--measured",
+                       measured, "--in-place")
+    assert code == 2 and "TOOL.CND:2:1: UT1: this TOOL.CND carries a ///CRC checksum" in err
+    assert (tmp_path / "TOOL.CND").read_bytes() == data
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["S.json", "TOOL.CND"]

@@ -73,8 +73,12 @@ def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: lis
                          "computed by the controller from the points both robots taught: ucsio "
                          "does not write it, nothing written (calibrate again on the pendant)",
                          file=where.get("file"), line=frame.line, col=1)
-    if frame.info.get("crc"):
-        crc_line = _crc_line(frame)
+    # the file's checksums, not the block's: one block without its ///CRC
+    # line is still in a file the controller checks
+    with_crc = frame if frame.info.get("crc") else next(
+        (f for f in cf.frames if f.info.get("crc")), None)
+    if with_crc is not None:
+        crc_line = _crc_line(with_crc)
         raise UcsioError(f"{frame.name}: this TOOL.CND carries a ///CRC checksum that ucsio "
                          "cannot compute, and a controller may reject a file whose checksum "
                          "does not match: not patched, nothing written (edit the tool on the "
