@@ -425,7 +425,7 @@ CODES_EVER = [
     "not-a-frame-array", "group-mismatch", "out-of-range", "unread-frame-set", "label-source",
     "after-end", "unread-line",
     "lf-only", "group-flags", "angle-range", "duplicate-block", "track-position", "unknown-line",
-    "npos-count",
+    "npos-count", "basicfrm-parent",
     "syntax-error", "unreadable", "round-trip",
 ]
 

@@ -72,9 +72,10 @@ def diff_frame(cf: ControllerFile, name: str, measured: Pose,
 
 # ------------------------------------------------------------- two files
 
-# FANUC's W, P, R are the pose's rotation, compared as one (frame_changes'
-# "value"), never as three numbers: W 180 and W -180 are one frame
-_IGNORED_INFO = {"module", "w", "p", "r"}
+# FANUC's W, P, R and Yaskawa's rx, ry, rz are the pose's rotation, compared
+# as one (frame_changes' "value"), never as three numbers: W 180 and W -180
+# are one frame (and "rz: -179.999 -> -0.4335" said a rotation twice, rounded)
+_IGNORED_INFO = {"module", "w", "p", "r", "rx", "ry", "rz"}
 
 
 def _native_deltas(d: dict) -> None:

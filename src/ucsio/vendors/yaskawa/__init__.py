@@ -35,6 +35,8 @@ class Yaskawa(Defaults):
     # -- orientation and numbers ------------------------------------------------------
     # R = Rz(rz)·Ry(ry)·Rx(rx): rx is SPEC's c, rz its a (tests/test_yaskawa.py)
     angles = AngleColumns(("rx", "ry", "rz"), "cba")
+    # diff --json's deltas in the names the table shows (drx = SPEC's dc)
+    native_deltas = (("drx", "dc"), ("dry", "db"), ("drz", "da"))
     # SPEC's measurement CSV has no Yaskawa columns yet (measurement_columns None)
 
     # -- robot positions (solve --robot) ------------------------------------------------

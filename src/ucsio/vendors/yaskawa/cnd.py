@@ -92,6 +92,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             raise doc.error(f"//{block.kind} {block.number} has no {what}", block.end)
         cf.frames.append(_frame(doc, block))
     _lint_blocks(cf, blocks)
+    _lint_parents(cf, blocks)
     _lint_line_endings(cf, blocks)
     cf.extra["kind"] = "user frames" if blocks[0].kind == "UFRAME" else "tools"
     return cf
@@ -296,6 +297,33 @@ def _lint_blocks(cf: ControllerFile, blocks: list[_Block]) -> None:
             cf.lint(offset, "unknown-line", f"{frame.name}: ///BASICFRM "
                     f"{frame.info.get('basicfrm')} is a base ucsio does not know: parent unknown",
                     "info")
+
+
+def _lint_parents(cf: ControllerFile, blocks: list[_Block]) -> None:
+    """A user frame defined on a user frame (``///BASICFRM 1,19,k``) the
+    file does not hold, or on itself through others: its parent is not
+    known (the tree lists it as unknown, a measured frame is not written)."""
+    on = {b.number: b.basicfrm[2] for b in blocks
+          if b.kind == "UFRAME" and b.basicfrm is not None and len(b.basicfrm) > 2
+          and b.basicfrm[1] == ON_USER_FRAME}
+    held = {b.number for b in blocks if b.kind == "UFRAME"}
+    for b in blocks:
+        if b.number not in on or b.kind != "UFRAME":
+            continue
+        chain, k = [b.number], on[b.number]
+        while k in on and k not in chain:
+            chain.append(k)
+            k = on[k]
+        offset = cf.document.line_starts[b.line - 1]
+        if k not in held:
+            path = " on ".join(f"UF{n}" for n in chain[1:] + [k])
+            cf.lint(offset, "basicfrm-parent", f"UF{b.number}: defined on {path} (///BASICFRM "
+                    f"1,19,{on[b.number]}), which this file does not hold: its parent is not "
+                    "known")
+        elif k == b.number:
+            circle = " on ".join(f"UF{n}" for n in chain + [k])
+            cf.lint(offset, "basicfrm-parent", f"UF{b.number}: defined on user frames in a "
+                    f"circle ({circle}): its parent is not known")
 
 
 def _lint_line_endings(cf: ControllerFile, blocks: list[_Block]) -> None:

@@ -14,5 +14,7 @@ LINT_CODES = {
                       "(///BASEP not zero)",
     "unknown-line": "info: a line or block of a Yaskawa condition file, job or RBCALIB.DAT "
                     "ucsio does not read, kept as it is",
+    "basicfrm-parent": "a Yaskawa user frame defined on a user frame (///BASICFRM 1,19,k) "
+                       "the file does not hold, or on itself through others: parent unknown",
     "npos-count": "a Yaskawa job whose ///NPOS does not count the positions that follow it",
 }

@@ -118,7 +118,7 @@ def from_solution(pose: Pose, frame: str, *, tcp=None, source: str | None = None
     number, g = parse_frame(frame, group)
     name = job_name(output, number)
     warnings: list[str] = []
-    numbers, p_from = choose_p(p, var, warnings)
+    numbers, p_from = choose_p(p, var, warnings, output)
     points = three_points(pose)
     source = "standard input" if source in (None, "-") else os.path.basename(source)
     text = make_job(name, number, g, numbers, points, source)
@@ -161,13 +161,17 @@ def job_name(out: str | None, number: int) -> str:
 
 
 # -- the P variables ------------------------------------------------------------------
-def choose_p(p: int | None, var: str | None, warnings: list[str]) -> tuple[list[int], str]:
+def choose_p(p: int | None, var: str | None, warnings: list[str],
+             output: str | None = None) -> tuple[list[int], str]:
     """The three P variables: ``p``, ``p``+1, ``p``+2 (refused where the
-    backup uses one), else three ``free_p`` finds free in ``var``."""
+    backup uses one), else three ``free_p`` finds free in ``var``. The job
+    at ``output`` is the one being replaced: its P variables are not the
+    cell's."""
     if p is None and var is None:
         raise UcsioError("which P variables? --p N (N, N+1, N+2), or --var VAR.DAT to take "
                          "three that the backup's VAR.DAT and jobs do not use")
-    used, count = (backup_use(var, warnings) if var is not None else ({}, P_MAX + 1))
+    used, count = (backup_use(var, warnings, output) if var is not None
+                   else ({}, P_MAX + 1))
     if p is None:
         return free_p(used, count, var), os.fspath(var)
     numbers = [p, p + 1, p + 2]
@@ -202,7 +206,8 @@ def free_p(used: dict[int, tuple], count: int, var: str | None) -> list[int]:
                      "(VAR.DAT and the jobs beside it); free some, or give --p N", file=var)
 
 
-def backup_use(var: str, warnings: list[str]) -> tuple[dict[int, tuple], int]:
+def backup_use(var: str, warnings: list[str],
+               output: str | None = None) -> tuple[dict[int, tuple], int]:
     """{P number: (file, line, what)}: where each P variable is used, from
     ``var`` (a VAR.DAT: its rows that are not "UNUSED") and every job (.JBI)
     in its folder, and how many P variables the controller has (its rows)."""
@@ -218,19 +223,24 @@ def backup_use(var: str, warnings: list[str]) -> tuple[dict[int, tuple], int]:
                          "controller has is not known; give --p N", file=var)
     used = {r.number: (var, r.line, f"a {r.kind or 'row'} row of the VAR.DAT")
             for r in rows if r.in_use}
-    for job in jobs_beside(var):
+    for job in jobs_beside(var, output):
         for n, where in job_p_numbers(job, warnings).items():
             used.setdefault(n, where)
     return used, len(rows)
 
 
-def jobs_beside(path: str) -> list[str]:
+def jobs_beside(path: str, output: str | None = None) -> list[str]:
+    """The job files in ``path``'s folder but ``output`` (the job this
+    run replaces: run twice, the same P variables), folders named .JBI
+    left out."""
     folder = os.path.dirname(os.path.abspath(path))
     try:
         names = sorted(os.listdir(folder))
     except OSError:
         return []
-    return [os.path.join(folder, n) for n in names if n.lower().endswith(".jbi")]
+    replaced = os.path.realpath(output) if output not in (None, "-") else None
+    jobs = [os.path.join(folder, n) for n in names if n.lower().endswith(".jbi")]
+    return [j for j in jobs if os.path.isfile(j) and os.path.realpath(j) != replaced]
 
 
 def job_p_numbers(path: str, warnings: list[str]) -> dict[int, tuple]:

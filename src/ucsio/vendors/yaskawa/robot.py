@@ -23,12 +23,17 @@ reader ``frames`` and ``check`` use.
 """
 from __future__ import annotations
 
+import re
+
 from ...errors import UcsioError
 from ...geometry.frames import Pose
 from ...parsing.document import Document
 from ...parsing.model import ControllerFile
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
 from . import job
+
+_GROUP1 = re.compile(r"^///GROUP1[ \t]+RB([0-9]+)\b", re.M)
+_GROUP2 = re.compile(r"^///GROUP2\b", re.M)
 
 # what each ///POSTYPE a job writes is in, where ucsio takes it
 IN_BASE = ("BASE", "ROBOT")
@@ -54,7 +59,7 @@ def read(vendor, path: str, configs, tool: str, wobj: str, load) -> RobotPoses:
     doc = Document.read(path)
     if not job.sniff(doc):
         raise doc.error("not a Yaskawa job: --robot takes a job (.JBI) that begins /JOB", 0)
-    frames = _Frames(configs or (), load, vendor.name)
+    frames = _Frames(configs or (), load, vendor.name, job_robot(doc))
     poses = []
     for p in job.positions(doc):
         if p.kind not in job.ROBOT_KINDS:
@@ -91,6 +96,15 @@ def _flange(doc: Document, p: job.Position, frames: "_Frames") -> Pose:
     return tcp.compose(frames.tool(p.tool, doc, p).inverse())
 
 
+def job_robot(doc: Document) -> int | None:
+    """The robot a job moves (``///GROUP1 RBn`` of its //INST); None where
+    it names none or several groups move (``///GROUP2``)."""
+    found = _GROUP1.findall(doc.text)
+    if len(found) != 1 or _GROUP2.search(doc.text):
+        return None
+    return int(found[0])
+
+
 class _Frames:
     """The tools (TOOL.CND) and user frames (UFRAME.CND) of ``--config``,
     each file loaded when first needed."""
@@ -98,8 +112,9 @@ class _Frames:
     KINDS = {"UT": ("tools", "TOOL.CND", "tool"), "UF": ("user frames", "UFRAME.CND",
                                                         "user frame")}
 
-    def __init__(self, configs, load, vendor: str):
+    def __init__(self, configs, load, vendor: str, robot: int | None = None):
         self.configs, self.load, self.vendor = tuple(configs), load, vendor
+        self.robot = robot          # the job's robot: a user frame of another is not its
         self.files: dict[str, ControllerFile] | None = None
         self.found: dict[str, Pose] = {}
 
@@ -156,5 +171,10 @@ class _Frames:
                             f"on the {parent.name} (///BASICFRM "
                             f"{frame.info.get('basicfrm')}), not on this robot's base",
                             p.at)
+        elif prefix == "UF" and self.robot not in (None, frame.info.get("group", self.robot)):
+            raise doc.error(f"{p.name}: {said}, but {name} ({cf.path}:{frame.line}) is robot "
+                            f"{frame.info['group']}'s user frame (///GROUP) and this job moves "
+                            f"RB{self.robot} (///GROUP1): its positions are not in that "
+                            "robot's base", p.at)
         self.found[name] = pose
         return pose

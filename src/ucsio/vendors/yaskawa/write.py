@@ -73,14 +73,20 @@ def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: lis
                          "computed by the controller from the points both robots taught: ucsio "
                          "does not write it, nothing written (calibrate again on the pendant)",
                          file=where.get("file"), line=frame.line, col=1)
-    if frame.info.get("crc"):
-        crc_line = _crc_line(frame)
+    # the file's checksums, not the block's: one block without its ///CRC
+    # line is still in a file the controller checks
+    with_crc = frame if frame.info.get("crc") else next(
+        (f for f in cf.frames if f.info.get("crc")), None)
+    if with_crc is not None:
+        crc_line = _crc_line(with_crc)
         raise UcsioError(f"{frame.name}: this TOOL.CND carries a ///CRC checksum that ucsio "
                          "cannot compute, and a controller may reject a file whose checksum "
                          "does not match: not patched, nothing written (edit the tool on the "
                          "pendant)", file=where.get("file"), line=crc_line, col=1)
     if frame.type == "UFRAME":
         warnings.append(TAUGHT_POINTS_WARNING.format(name=frame.name) + _in_jobs(cf, frame))
+        # the patch keeps the file's line endings: say that these will not load
+        warnings += [f"{lint.message} (lf-only)" for lint in cf.lints if lint.code == "lf-only"]
 
 
 def _in_jobs(cf: ControllerFile, frame: Frame) -> str:
