@@ -288,7 +288,7 @@ def test_points_taught_in_uf2_of_the_backups_jobs(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", tmp_path / "backup" / "UFRAME.CND", "--frame", "UF2",
                          "--measured", s, "--points")
     assert "taught points in UF2: 3" in out
-    assert "2 PULSE or BASE positions of the jobs that use UF2 skipped" in out
+    assert "2 PULSE, BASE or ROBOT positions of the jobs that use UF2 skipped" in out
 
 
 def test_cut_only_beside_its_uframe(tmp_path, capsys):

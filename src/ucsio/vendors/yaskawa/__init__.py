@@ -79,8 +79,9 @@ class Yaskawa(Defaults):
         from .taught import find
         return find(cf, frame, cache)
 
-    skipped_points = ("{count} PULSE or BASE position{s} of the jobs that use {name} skipped: "
-                      "joint pulses and positions in the robot base do not move with a frame")
+    skipped_points = ("{count} PULSE, BASE or ROBOT position{s} of the jobs that use {name} "
+                      "skipped: joint pulses and positions in the robot base do not move with a "
+                      "frame")
 
     def prefilled(self, frame, cf) -> bool:
         """TOOL.CND lists all 64 tools: one all zeros without a name is the
