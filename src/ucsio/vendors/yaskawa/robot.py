@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from ...errors import UcsioError
 from ...geometry.frames import Pose
+from ...parsing.controller import refuse_binary
 from ...parsing.document import Document
 from ...parsing.model import ControllerFile
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
@@ -52,6 +53,7 @@ def read(vendor, path: str, configs, tool: str, wobj: str, load) -> RobotPoses:
                          "FANUC's registers; a Yaskawa job's positions name their own "
                          "(///TOOL n, ///USER k)", file=path)
     doc = Document.read(path)
+    refuse_binary(doc)                  # as check refuses it
     if not job.sniff(doc):
         raise doc.error("not a Yaskawa job: --robot takes a job (.JBI) that begins /JOB", 0)
     frames = _Frames(configs or (), load, vendor.name)
