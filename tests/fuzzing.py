@@ -286,7 +286,6 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
     """Run the oracle on one input; raise Finding on anything wrong. Returns
     a short word for statistics ('refused', 'accepted', 'check-only')."""
     from ucsio.commands.check import round_trip
-    from ucsio.review.patch import patch_frame
 
     doc = Document(raw, name)
     if doc.to_bytes() != raw:
@@ -314,32 +313,44 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
             continue
         done += 1
         target = target_for(frame.pose, frame.name)
-        try:
-            res = patch_frame(fast, frame.name, target, measured=False, check_siblings=False)
-        except UcsioError as exc:
-            _sane_error(doc, exc, f"patch {frame.name}")
-            continue
-        except Exception as exc:  # noqa: BLE001
-            raise Finding(f"patch {frame.name}: {type(exc).__name__}: {exc}"[:300]) from exc
-        never_written(doc, frame)
-        new = Document(res.new_bytes, name)
-        again, err = _parse(new, full=False)
-        if again is None:
-            raise Finding(f"patch {frame.name}: the patched file is refused: {err}")
-        # a TP program may set the frame twice alike: the patch writes both
-        # (tests/test_fanuc_write.py), so the name's every setting is compared
-        before = [f for f in fast.frames if f.name == frame.name]
-        got = [f for f in again.frames if f.name == frame.name]
-        if len(got) != len(before):
-            raise Finding(f"patch {frame.name}: set {len(before)} times before the patch, "
-                          f"{len(got)} after")
-        if not only_numbers_changed(doc.text, before, new.text, got):
-            raise Finding(f"patch {frame.name}: bytes outside the frame's numbers changed")
-        if full is not None:
-            checked, err = _parse(Document(res.new_bytes, name), full=True)
-            if checked is None:
-                raise Finding(f"patch {frame.name}: check refuses the patched file: {err}")
+        _patch_oracle(doc, fast, full, frame, target, measured=False)
+        if frame.vendor == "yaskawa" and frame.type == "UFRAME":
+            # a measured frame in the robot base, taken into the frame's parent
+            # (a frame on user frame k: UFk^-1 * target; a circle refused)
+            _patch_oracle(doc, fast, full, frame, target, measured=True)
     return "accepted" if full is not None else "check-only"
+
+
+def _patch_oracle(doc: Document, fast, full, frame, target: Pose, measured: bool) -> None:
+    """One patch of ``frame``: refused cleanly, or confined to its numbers."""
+    from ucsio.review.patch import patch_frame
+
+    name = doc.path
+    try:
+        res = patch_frame(fast, frame.name, target, measured=measured, check_siblings=False)
+    except UcsioError as exc:
+        _sane_error(doc, exc, f"patch {frame.name}")
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"patch {frame.name}: {type(exc).__name__}: {exc}"[:300]) from exc
+    never_written(doc, frame)
+    new = Document(res.new_bytes, name)
+    again, err = _parse(new, full=False)
+    if again is None:
+        raise Finding(f"patch {frame.name}: the patched file is refused: {err}")
+    # a TP program may set the frame twice alike: the patch writes both
+    # (tests/test_fanuc_write.py), so the name's every setting is compared
+    before = [f for f in fast.frames if f.name == frame.name]
+    got = [f for f in again.frames if f.name == frame.name]
+    if len(got) != len(before):
+        raise Finding(f"patch {frame.name}: set {len(before)} times before the patch, "
+                      f"{len(got)} after")
+    if not only_numbers_changed(doc.text, before, new.text, got):
+        raise Finding(f"patch {frame.name}: bytes outside the frame's numbers changed")
+    if full is not None:
+        checked, err = _parse(Document(res.new_bytes, name), full=True)
+        if checked is None:
+            raise Finding(f"patch {frame.name}: check refuses the patched file: {err}")
 
 
 # ------------------------------------------------------------------ Yaskawa's own oracles
