@@ -54,20 +54,14 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
     FANUC sysframe.va takes its frames' comments from them); False for a
     file that stands alone (git's textconv hands over a temporary copy)."""
     _refuse_foreign(doc, beside)
-    refuse_binary(doc)
+    if looks_binary(doc.raw):
+        raise _binary_error(doc)
     vendor = vendors.get(vendors.detect(doc))
     # The trees and frames of a file hold no reference cycles; the cyclic
     # collector's passes over their growing heap made a long file's
     # reading grow faster than the file (tests: benchmarks/bench_linear.py).
     with paused_gc():
         return vendor.parse(doc, full=full, beside=beside)
-
-
-def refuse_binary(doc: Document) -> None:
-    """Refuse a binary or encrypted file as ``check`` does: a reader that
-    does not go through ``parse`` (solve --robot's) calls it too."""
-    if looks_binary(doc.raw):
-        raise _binary_error(doc)
 
 
 def _binary_error(doc: Document) -> UcsioError:
