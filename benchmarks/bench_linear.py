@@ -52,6 +52,23 @@ def krl(body: str, end: str = "ENDDAT\n") -> tuple[str, str]:
 
 FRAME = "DECL FRAME f{i}={{X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0}}\n"
 
+# Yaskawa: one item per line (CRLF, as a controller writes them)
+JOB_POS = ("/JOB\r\n//NAME H\r\n//POS\r\n///NPOS 0,0,0,0,0,0\r\n///TOOL 3\r\n///POSTYPE BASE\r\n"
+           "///RECTAN\r\n///RCONF 0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\r\n")
+JOB_INST = "//INST\r\n///DATE 2026/11/30 14:20\r\n///GROUP1 RB1\r\nNOP\r\n"
+POSITION = "C{i:05d}=1103.214,881.096,837.253,-176.4201,2.7557,-40.5604\r\n"
+UFRAME = ("//UFRAME {i}\r\n///NAME F{i}\r\n///TOOL 3\r\n///GROUP 1,0,0,0,0,0,0,0\r\n"
+          "///BASICFRM 1,16,0\r\n///BASEP 0.000,0.000,0.000,0.0000,0.0000,0.0000\r\n///PULSE\r\n"
+          "////RORG C000=-37843,-83346,-95223,7024,-29869,-5287,0,0,0\r\n"
+          "////BUSER 620.000,-1180.000,455.000,0.0000,0.0000,-90.0000\r\n")
+VAR_P = "//VAR\r\n///PFNUM 1\r\n///P\r\n"
+P_ROW = '"RECTAN"0,0,4,000000000000000000000000,0,16,620.000,-1180.000,455.000,0.0000,0.0000,-90.0000,0.0000,0.0000\r\n'
+
+
+def job(positions: str, inst: str = "END\r\n") -> tuple[str, str]:
+    return "h.JBI", JOB_POS + positions + JOB_INST + inst
+
+
 # name -> function of n (a length in characters) giving (file name, text)
 SHAPES = {
     # RAPID: blanks and blank lines inside and around declarations
@@ -112,6 +129,29 @@ SHAPES = {
     "krl many [": lambda n: krl("BASE_DATA" + "[" * n + "\n"),
     "krl element blanks": lambda n: krl("BASE_DATA[1]" + " " * n + "={X 1,Y 2,Z 3,A 0,B 0,C 0}\n"),
     "krl no DEFDAT, many lines": lambda n: ("h.dat", "INT i=1\n" * (n // 8)),
+    # Yaskawa: many items, and one long line in each file's places
+    "yaskawa job many positions": lambda n: job("".join(POSITION.format(i=i % 100000)
+                                                         for i in range(n // 62))),
+    "yaskawa job tool changes": lambda n: job(("///TOOL 1\r\n" + POSITION.format(i=0)) * (n // 73)),
+    "yaskawa job long position": lambda n: job("C00000=" + "1.5," * (n // 4) + "\r\n"),
+    "yaskawa job long number": lambda n: job("C00000=" + "1" * n + ",2,3,4,5,6\r\n"),
+    "yaskawa job long RCONF": lambda n: job("///RCONF " + "0," * (n // 2) + "0\r\n"),
+    "yaskawa job long comment": lambda n: job("", "'" + "a" * n + "\r\nEND\r\n"),
+    "yaskawa job blank lines first": lambda n: ("h.JBI", "\r\n" * (n // 2) + "".join(job("")[1])),
+    "yaskawa job of positions, no /JOB": lambda n: ("h.JBI", POSITION.format(i=0) * (n // 62)),
+    "yaskawa uframe many frames": lambda n: ("UFRAME.CND", "".join(
+        UFRAME.format(i=i % 63 + 1) for i in range(n // 330))),
+    "yaskawa uframe long name": lambda n: ("UFRAME.CND", UFRAME.format(i=1).replace(
+        "///NAME F1", "///NAME " + "F" * n)),
+    "yaskawa uframe long BUSER": lambda n: ("UFRAME.CND", UFRAME.format(i=1).replace(
+        "620.000,", "1" * n + ".0,")),
+    "yaskawa tool long pose": lambda n: ("TOOL.CND", "//TOOL 0\r\n///NAME\r\n"
+                                         + "0.5," * (n // 4) + "\r\n"),
+    "yaskawa var many P rows": lambda n: ("VAR.DAT", VAR_P + P_ROW * (n // 110)),
+    "yaskawa var long row": lambda n: ("VAR.DAT", VAR_P + '"RECTAN"' + "0," * (n // 2) + "\r\n"),
+    "yaskawa var many UNUSED": lambda n: ("VAR.DAT", VAR_P + '"UNUSED"\r\n' * (n // 10)),
+    "yaskawa rbcalib long SRANG": lambda n: ("RBCALIB.DAT", "//RBCALIB 1\r\n///MGROUP 1,0\r\n"
+                                             "////SRANG " + "2.5," * (n // 4) + "\r\n"),
 }
 
 

@@ -10,6 +10,7 @@ wrong and how to replay it. Move a saved input to fixtures/fuzz/ once fixed:
 tests/test_fuzz.py replays everything there.
 
     python benchmarks/fuzz.py --minutes 30 [--seed 1] [--out fuzz-findings] [--max-size 50000]
+        [--only yaskawa]
 
 Exit status 1 if anything was found.
 """
@@ -35,11 +36,15 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="fuzz-findings", help="folder for failing inputs")
     ap.add_argument("--max-size", type=int, default=None,
                     help="only seed files up to this many bytes (default: all)")
+    ap.add_argument("--only", default=None, metavar="WORD",
+                    help="only seed files whose path holds WORD (a vendor: yaskawa)")
     ap.add_argument("--max-ops", type=int, default=3, help="mutations stacked per input")
     args = ap.parse_args(argv)
     seed = args.seed if args.seed is not None else int(time.time())
     rng = random.Random(seed)
     seeds = fuzzing.seed_files(args.max_size)
+    if args.only:
+        seeds = [p for p in seeds if args.only.lower() in str(p).lower()]
     if not seeds:
         print("no seed files (corpus and fixtures missing?)", file=sys.stderr)
         return 2

@@ -21,7 +21,10 @@ every failing input.
 """
 from __future__ import annotations
 
+import math
 import random
+import re
+import tempfile
 from pathlib import Path
 
 from oracles import only_numbers_changed
@@ -59,16 +62,33 @@ TOKENS = [
     b"/MN\n", b"/POS\n", b"/END\n", b"/PROG  P\n", b"   1:  ", b"UFRAME[", b"UTOOL[1:x]=PR[1] ;",
     b"PR[1,1]=", b"(-", b"((", b"LPOS", b"LPOS-LPOS", b"R[", b"P[1]{", b"GP1:", b"};",
     b"UF : 1, UT : 1,", b"X = ", b"    :  ", b"-.000", b".140",
+    # Yaskawa condition files, jobs, RBCALIB.DAT and VAR.DAT
+    b"//UFRAME 1\r\n", b"//TOOL 0\r\n", b"//UFRAME", b"///NAME ", b"///NAME \r\n", b"///TOOL ",
+    b"///TOOL 1\r\n", b"///USER ", b"///USER 2\r\n", b"///GROUP 1,0,0,0\r\n", b"///GROUP ",
+    b"///BASICFRM 1,19,", b"///BASICFRM 1,19,1\r\n", b"///BASICFRM 1,20,0\r\n", b"///BASEP ",
+    b"////BUSER ", b"////RORG C000=", b"///CRC 12345\r\n", b"///CRC", b"/JOB\r\n", b"//NAME ",
+    b"//POS\r\n", b"//INST\r\n", b"///NPOS ", b"///NPOS 1,0,0,0,0,0\r\n", b"///POSTYPE ",
+    b"///POSTYPE USER\r\n", b"///POSTYPE PULSE\r\n", b"///POSTYPE BASE\r\n",
+    b"///POSTYPE TOOL\r\n", b"///RECTAN\r\n", b"///PULSE\r\n", b"///RCONF ", b"///RCONF 0,0,0\r\n",
+    b"C00003=", b"P00012=", b"BC00001=", b"EX001=", b"C00000=1,2,3,4,5,6\r\n", b"1,2,3,4,5,6,7",
+    b"//VAR\r\n", b"///P\r\n", b"///R\r\n", b'"RECTAN"', b'"UNUSED"', b'"PULSE"', b'""',
+    b'"RECTAN"0,0,4,000000000000000000000000,0,16,1,2,3,4,5,6,0.0000,0.0000\r\n',
+    b"//RBCALIB 1\r\n", b"////SRANG ", b"///MGROUP ", b"///SGROUP 0,1,0\r\n", b"///MTOOL ",
+    b"////MRBC1 ", b"MFRAME UF#(2) P010 P011 P012\r\n", b"MOVL P", b"P[", b"'", b",,",
 ]
+
+
+DEMO_DATA = ROOT / "src" / "ucsio" / "demo" / "data"
 
 
 def seed_files(max_size: int | None = None) -> list[Path]:
     """Real files first (the corpus, where it is beside the checkout), then
-    our fixtures; optionally only those up to ``max_size`` bytes."""
+    our fixtures and the demo's cells; optionally only those up to
+    ``max_size`` bytes."""
     from ucsio.vendors import BACKUP_SUFFIXES, VENDORS   # every registered vendor's files
 
     found = []
-    for folder in [CORPUS / e.name for e in VENDORS] + [ROOT / "fixtures"]:
+    for folder in [CORPUS / e.name for e in VENDORS] + [ROOT / "fixtures", DEMO_DATA]:
         if folder.is_dir():
             for p in sorted(folder.rglob("*")):
                 if p.is_file() and p.suffix.lower() in BACKUP_SUFFIXES:
@@ -266,7 +286,6 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
     """Run the oracle on one input; raise Finding on anything wrong. Returns
     a short word for statistics ('refused', 'accepted', 'check-only')."""
     from ucsio.commands.check import round_trip
-    from ucsio.review.patch import patch_frame
 
     doc = Document(raw, name)
     if doc.to_bytes() != raw:
@@ -281,8 +300,10 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
             raise Finding("the fast path and check give different frames")
         if not round_trip(full):
             raise Finding("check's round trip fails on a file it accepts")
+    robot_positions_oracle(name, raw, doc, fast)
     if fast is None:
         return "refused"
+    free_p_oracle(name, raw, fast)
     # patches: each refused cleanly, or confined to the frame's numbers
     done = 0
     for frame in fast.frames:
@@ -292,28 +313,122 @@ def check_bytes(name: str, raw: bytes, patches: int = 2) -> str:
             continue
         done += 1
         target = target_for(frame.pose, frame.name)
-        try:
-            res = patch_frame(fast, frame.name, target, measured=False, check_siblings=False)
-        except UcsioError as exc:
-            _sane_error(doc, exc, f"patch {frame.name}")
-            continue
-        except Exception as exc:  # noqa: BLE001
-            raise Finding(f"patch {frame.name}: {type(exc).__name__}: {exc}"[:300]) from exc
-        new = Document(res.new_bytes, name)
-        again, err = _parse(new, full=False)
-        if again is None:
-            raise Finding(f"patch {frame.name}: the patched file is refused: {err}")
-        # a TP program may set the frame twice alike: the patch writes both
-        # (tests/test_fanuc_write.py), so the name's every setting is compared
-        before = [f for f in fast.frames if f.name == frame.name]
-        got = [f for f in again.frames if f.name == frame.name]
-        if len(got) != len(before):
-            raise Finding(f"patch {frame.name}: set {len(before)} times before the patch, "
-                          f"{len(got)} after")
-        if not only_numbers_changed(doc.text, before, new.text, got):
-            raise Finding(f"patch {frame.name}: bytes outside the frame's numbers changed")
-        if full is not None:
-            checked, err = _parse(Document(res.new_bytes, name), full=True)
-            if checked is None:
-                raise Finding(f"patch {frame.name}: check refuses the patched file: {err}")
+        _patch_oracle(doc, fast, full, frame, target, measured=False)
+        if frame.vendor == "yaskawa" and frame.type == "UFRAME":
+            # a measured frame in the robot base, taken into the frame's parent
+            # (a frame on user frame k: UFk^-1 * target; a circle refused)
+            _patch_oracle(doc, fast, full, frame, target, measured=True)
     return "accepted" if full is not None else "check-only"
+
+
+def _patch_oracle(doc: Document, fast, full, frame, target: Pose, measured: bool) -> None:
+    """One patch of ``frame``: refused cleanly, or confined to its numbers."""
+    from ucsio.review.patch import patch_frame
+
+    name = doc.path
+    try:
+        res = patch_frame(fast, frame.name, target, measured=measured, check_siblings=False)
+    except UcsioError as exc:
+        _sane_error(doc, exc, f"patch {frame.name}")
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"patch {frame.name}: {type(exc).__name__}: {exc}"[:300]) from exc
+    never_written(doc, frame)
+    new = Document(res.new_bytes, name)
+    again, err = _parse(new, full=False)
+    if again is None:
+        raise Finding(f"patch {frame.name}: the patched file is refused: {err}")
+    # a TP program may set the frame twice alike: the patch writes both
+    # (tests/test_fanuc_write.py), so the name's every setting is compared
+    before = [f for f in fast.frames if f.name == frame.name]
+    got = [f for f in again.frames if f.name == frame.name]
+    if len(got) != len(before):
+        raise Finding(f"patch {frame.name}: set {len(before)} times before the patch, "
+                      f"{len(got)} after")
+    if not only_numbers_changed(doc.text, before, new.text, got):
+        raise Finding(f"patch {frame.name}: bytes outside the frame's numbers changed")
+    if full is not None:
+        checked, err = _parse(Document(res.new_bytes, name), full=True)
+        if checked is None:
+            raise Finding(f"patch {frame.name}: check refuses the patched file: {err}")
+
+
+# ------------------------------------------------------------------ Yaskawa's own oracles
+
+# a TOOL.CND line ucsio cannot recompute: a file with one is never written
+_CRC_LINE = re.compile(r"^/{3,4}CRC", re.M)
+# the tools and user frames a fuzzed job's positions are resolved through
+R05 = DEMO_DATA / "R05_yaskawa"
+
+
+def never_written(doc: Document, frame) -> None:
+    """A patch that went through on what must never be written: a
+    condition file with a ///CRC line anywhere (its checksum is not known),
+    or RBCALIB.DAT's calibration."""
+    if frame.vendor != "yaskawa":
+        return
+    if frame.type == "RBCALIB":
+        raise Finding(f"patch {frame.name}: RBCALIB.DAT's calibration was written")
+    if _CRC_LINE.search(doc.text):
+        raise Finding(f"patch {frame.name}: a file with a ///CRC line was written")
+
+
+def _in_temp(name: str, raw: bytes, use):
+    """``use(path)`` with ``raw`` written to a fresh folder as ``name``."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / name
+        path.write_bytes(raw)
+        return use(str(path))
+
+
+def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
+    """solve --robot's reader of a job (.JBI): a clean error where check
+    refuses the job, else one robot position per C and P row, each a finite
+    flange pose or a clean problem; never another exception."""
+    from ucsio import vendors
+    from ucsio.parsing.controller import load
+
+    if not name.lower().endswith(".jbi"):
+        return
+    vendor = vendors.get("yaskawa")
+    configs = (str(R05 / "TOOL.CND"), str(R05 / "UFRAME.CND"))
+    try:
+        got = _in_temp(name, raw, lambda path: vendor.robot_positions(
+            path, config=configs, tool="tool0", wobj="wobj0", load=load))
+    except UcsioError as exc:
+        _sane_error(doc, exc, "solve --robot")
+        if fast is not None and fast.vendor == "yaskawa":
+            raise Finding(f"solve --robot refuses a job check reads: {exc.message}"[:300]) \
+                from exc
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"solve --robot: {type(exc).__name__}: {exc}"[:300]) from exc
+    if fast is None or fast.extra.get("kind") != "job":
+        raise Finding("solve --robot reads a job check refuses")
+    rows = [p for p in fast.extra["positions"] if p.kind in ("C", "P")]
+    if len(got.poses) != len(rows):
+        raise Finding(f"solve --robot: {len(got.poses)} positions, check reads {len(rows)}")
+    for rp in got.poses:
+        if rp.problem is not None:
+            _sane_error(doc, rp.problem, f"solve --robot {rp.name}")
+        elif not all(math.isfinite(v) for row in rp.flange for v in row):
+            raise Finding(f"solve --robot {rp.name}: a flange pose that is not finite")
+
+
+def free_p_oracle(name: str, raw: bytes, cf) -> None:
+    """ucsio program --var VAR.DAT: three free P variables the file says are
+    unused (and the controller has), or a clean error."""
+    from ucsio.vendors.yaskawa import program, var
+
+    if cf.vendor != "yaskawa" or cf.extra.get("kind") != "global variables":
+        return
+    try:
+        chosen = _in_temp(name, raw, lambda path: program.choose_p(None, path, [])[0])
+    except UcsioError as exc:
+        _sane_error(cf.document, exc, "program --var")
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"program --var: {type(exc).__name__}: {exc}"[:300]) from exc
+    used = set(var.in_use(cf))
+    if len(set(chosen)) != 3 or any(n in used or not 0 <= n < var.p_count(cf) for n in chosen):
+        raise Finding(f"program --var: P variables {chosen} are not three free ones")

@@ -21,7 +21,10 @@ FANUC_SEEDS = [p for p in fuzzing.seed_files(max_size=40_000)
                if p.suffix.lower() in (".va", ".dg", ".ls")
                and (p.stat().st_size <= 12_000 or p.name.endswith(("UB10200_RBT01__sysframe.va",
                                                                    "kjltvr411670r01__SYSFRAME.VA")))]
-YASKAWA_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".cnd"]
+# Yaskawa: the corpus's, our fixtures' and the demo cell's (R05) files
+YASKAWA = [p for p in SEEDS if "yaskawa" in str(p).lower()]
+YASKAWA_SEEDS = [p for p in YASKAWA if p.suffix.lower() != ".jbi"]    # .CND, RBCALIB, VAR.DAT
+YASKAWA_JOBS = [p for p in YASKAWA if p.suffix.lower() == ".jbi"]
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -50,8 +53,19 @@ def test_mutated_fanuc_files(seed, ops):
 @settings(max_examples=60, **SETTINGS)
 @given(seed=st.sampled_from(YASKAWA_SEEDS or [None]), ops=ops)
 def test_mutated_yaskawa_files(seed, ops):
+    """UFRAME.CND, TOOL.CND (a ///CRC file never written), RBCALIB.DAT and
+    VAR.DAT (the free P variables ucsio program would take)."""
     if seed is None:
-        pytest.skip("no Yaskawa .CND seed (the shared corpus is absent)")
+        pytest.skip("no Yaskawa seed (the shared corpus is absent)")
+    fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
+
+
+@settings(max_examples=60, **SETTINGS)
+@given(seed=st.sampled_from(YASKAWA_JOBS or [None]), ops=ops)
+def test_mutated_yaskawa_jobs(seed, ops):
+    """Jobs (.JBI) through check and through solve --robot's reader."""
+    if seed is None:
+        pytest.skip("no Yaskawa job seed")
     fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
 
 

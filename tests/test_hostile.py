@@ -113,7 +113,10 @@ def _shapes():
                                    # issue 18: quadratic until fixed
                                    "rapid CONST long word", "rapid VAR long digits",
                                    "rapid routine of blanks", "krl many & lines",
-                                   "krl no DEFDAT, many lines"])
+                                   "krl no DEFDAT, many lines",
+                                   # issue 27: Yaskawa's line readers
+                                   "yaskawa job many positions", "yaskawa var many UNUSED",
+                                   "yaskawa job blank lines first"])
 def test_hostile_shapes_take_linear_time(shape):
     """Shapes that once took quadratic time (a 40 KB file ~20 s, 80 KB over
     90 s). At 200 KB a quadratic pass would take minutes; linear is well under

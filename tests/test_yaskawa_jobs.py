@@ -21,6 +21,7 @@ from scipy.spatial.transform import Rotation
 from conftest import FIXTURES, corpus_file
 from fanuc_cell import Cell, inv
 from test_yaskawa import KOMATSU, cli, crlf, tool, uframe, write
+from ucsio.errors import UcsioError
 from ucsio.parsing.controller import parse
 from ucsio.parsing.document import Document
 from ucsio.readers.robot import read_robot
@@ -136,6 +137,30 @@ def test_bad_npos_and_a_file_that_is_not_a_job(tmp_path, capsys):
     path = write(tmp_path, "NOT.JBI", b"hello\r\n")
     code, out, err = cli(capsys, "frames", path)
     assert code == 2 and f"{path}:1:1:" in err and "a job begins /JOB" in err
+
+
+def test_blank_lines_before_job_read_alike_with_or_without_its_name(tmp_path, capsys):
+    """Blank lines of any length before /JOB: the job is read by its name,
+    by its first line where it has no name (a git temporary file), and by
+    solve --robot, all alike (found by benchmarks/fuzz.py: a 16-character
+    window made solve --robot refuse what check read)."""
+    data = b"\xef\xbb\xbf" + b" " * 40 + b"\r\n" * 3 + crlf(a_job(
+        "///TOOL 0\n///POSTYPE BASE\n///RECTAN\nC00000=1.000,2.000,3.000,0.0000,0.0000,0.0000\n",
+        npos="1,0,0,0,0,0"))
+    for name in ("HOME.JBI", "tmp_job"):
+        assert len(parse(Document(data, name)).extra["positions"]) == 1
+    path = write(tmp_path, "HOME.JBI", data)
+    assert [p.name for p in read_robot(path, config=[]).poses] == ["C00000"]
+
+
+def test_solve_robot_refuses_a_binary_job_as_check_does(tmp_path, capsys):
+    data = crlf(a_job("")).replace(b"NOP", b"N\x13OP")
+    path = write(tmp_path, "BIN.JBI", data)
+    code, out, err = cli(capsys, "check", path)
+    assert code == 2 and f"{path}:9:2: binary or encrypted file (byte 0x13 here)" in err
+    with pytest.raises(UcsioError) as exc:
+        read_robot(path, config=[])
+    assert f"{path}:9:2: binary or encrypted file (byte 0x13 here)" in str(exc.value)
 
 
 # -- solve --robot JOB.JBI -------------------------------------------------------------------

@@ -197,6 +197,25 @@ def test_tool_cnd_with_crc_is_refused_with_the_reason(tmp_path, capsys):
         assert path.read_bytes() == data
 
 
+def test_a_crc_line_in_another_block_still_refuses_the_file(tmp_path, capsys):
+    """Only UT1 carries ///CRC (a block's line lost, a hand edit): the file
+    has a checksum all the same, so UT0 is not written either; a user frame
+    file with one likewise (found by benchmarks/fuzz.py)."""
+    data = crlf(tool(0, "STANDARD TOOL", "0.000,0.000,0.000,0.0000,90.0000,0.0000", False)
+                + tool(1, "TORCH", "1.500,-2.000,300.000,0.0000,0.0000,0.0000", True))
+    path = write(tmp_path, "TOOL.CND", data)
+    code, out, err = cli(capsys, "patch", path, "--frame", "UT0", "--set", "1,2,3,0,0,0",
+                         "--in-place")
+    assert code == 2 and path.read_bytes() == data
+    assert f"{path}:9:1: UT0: this TOOL.CND carries a ///CRC checksum" in err
+    frames = UFRAMES.replace(b"///NAME TABLE\r\n", b"///NAME TABLE\r\n///CRC 12\r\n")
+    path = write(tmp_path, "UFRAME.CND", frames)
+    code, out, err = cli(capsys, "patch", path, "--frame", "UF1", "--set", "1,2,3,0,0,0",
+                         "--in-place")
+    assert code == 2 and path.read_bytes() == frames
+    assert f"{path}:3:1: UF1: this UFRAME.CND carries a ///CRC checksum" in err
+
+
 def test_tool_cnd_without_crc_takes_a_solved_tcp(tmp_path, capsys):
     data = tools(crc=False)
     path = write(tmp_path, "TOOL.CND", data)

@@ -54,6 +54,11 @@ class Yaskawa(Defaults):
     same_rotation_tolerance = 0.25e-4   # deg: a quarter of the 4 decimals it writes
     readback_angle = 5e-4
 
+    def where(self, frame) -> dict:
+        # a frame's line is its block's head (//UFRAME n, //TOOL n), which
+        # begins the line: a refusal names file:line:col as any error does
+        return {"file": frame.file, "line": frame.line, "col": 1}
+
     def plan_changes(self, frame, pose):
         from .write import plan
         return plan(frame, pose)

@@ -33,6 +33,8 @@ COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
 # block keyword -> (frame type, name prefix, reference)
 KINDS = {"UFRAME": ("UFRAME", "UF", "world"), "TOOL": ("TOOL", "UT", "flange")}
 ANGLE_MAX = 180.0
+# a checksum line (TOOL.CND from YAS4.81 on), in any spelling that may be one
+CRC_LINE = ("///CRC", "////CRC")
 # ///BASICFRM 1,k,m: what a user frame is defined on
 ROBOT_BASE, ON_USER_FRAME, ON_MASTER_TOOL = 16, 19, 20
 
@@ -111,6 +113,8 @@ def _blocks(doc: Document, cf: ControllerFile) -> list[_Block]:
             continue
         if not line.strip():
             continue
+        if line.startswith(CRC_LINE) and "crc_line" not in cf.extra:
+            cf.extra["crc_line"] = doc.line_of(pos)     # a checksum: never written (write.py)
         if block is None:       # in a block ucsio does not read (reported at its head)
             continue
         block.end = pos + len(line)

@@ -43,6 +43,7 @@ RECTAN_COUNTS = (6, 7)
 _POSITION = regex.lazy(r"(?P<kind>BC|EC|BP|EX|C|P)(?P<number>[0-9]+)=")
 _ITEM = regex.lazy(r"(?P<slashes>/{1,3})(?P<key>[A-Z]+[0-9]*)(?:[ \t]+(?P<rest>[^\n]*))?\Z")
 _INT = regex.lazy(r"[+-]?[0-9]+\Z")
+_HEAD = regex.lazy(r"[\ufeff \t\r\n]*+/JOB(?![^ \t\r\n])")
 _NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)\Z")
 
 
@@ -88,9 +89,9 @@ class _Group:
 
 
 def sniff(doc: Document) -> bool:
-    """Whether a file begins ``/JOB`` (a git temporary file has no suffix)."""
-    head = doc.text[:16].lstrip("\ufeff \t\r\n")
-    return head.startswith("/JOB") and head[4:5] in ("", "\r", "\n", " ", "\t")
+    """Whether a file begins ``/JOB`` (a git temporary file has no suffix),
+    after blank lines of any length, as ``positions`` reads it."""
+    return _HEAD.match(doc.text) is not None
 
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:

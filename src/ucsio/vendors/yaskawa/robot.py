@@ -56,12 +56,15 @@ def read(vendor, path: str, configs, tool: str, wobj: str, load) -> RobotPoses:
         raise UcsioError("--robot-tool and --robot-wobj name the frames of ABB's robtargets and "
                          "FANUC's registers; a Yaskawa job's positions name their own "
                          "(///TOOL n, ///USER k)", file=path)
-    doc = Document.read(path)
-    if not job.sniff(doc):
-        raise doc.error("not a Yaskawa job: --robot takes a job (.JBI) that begins /JOB", 0)
+    # read as check reads it: a binary, foreign or damaged file is refused alike
+    cf = load(path)
+    if cf.vendor != vendor.name or cf.extra.get("kind") != "job":
+        raise UcsioError("not a Yaskawa job: --robot takes a job (.JBI) that begins /JOB",
+                         file=path, line=1, col=1)
+    doc = cf.document
     frames = _Frames(configs or (), load, vendor.name, job_robot(doc))
     poses = []
-    for p in job.positions(doc):
+    for p in cf.extra["positions"]:
         if p.kind not in job.ROBOT_KINDS:
             continue                    # a base's or station's axes: not the robot's flange
         line, col = doc.line_col(p.at)

@@ -64,8 +64,8 @@ def plan(frame: Frame, pose: Pose) -> list[Change]:
 
 
 def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: list[str]) -> None:
-    """A tool of a TOOL.CND with ``///CRC`` lines is refused at its ///CRC
-    line; a user frame is written with the warning that its taught points
+    """A frame of a condition file with a ``///CRC`` line is refused at its
+    block's ///CRC line (else the file's first); a user frame is written with the warning that its taught points
     no longer match it. RBCALIB.DAT's SRANG is refused: the controller
     calibrates it from its taught points in both robots."""
     if frame.type == "RBCALIB":
@@ -73,16 +73,16 @@ def check_patchable(cf: ControllerFile, frame: Frame, where: dict, warnings: lis
                          "computed by the controller from the points both robots taught: ucsio "
                          "does not write it, nothing written (calibrate again on the pendant)",
                          file=where.get("file"), line=frame.line, col=1)
-    # the file's checksums, not the block's: one block without its ///CRC
-    # line is still in a file the controller checks
-    with_crc = frame if frame.info.get("crc") else next(
-        (f for f in cf.frames if f.info.get("crc")), None)
-    if with_crc is not None:
-        crc_line = _crc_line(with_crc)
-        raise UcsioError(f"{frame.name}: this TOOL.CND carries a ///CRC checksum that ucsio "
-                         "cannot compute, and a controller may reject a file whose checksum "
-                         "does not match: not patched, nothing written (edit the tool on the "
-                         "pendant)", file=where.get("file"), line=crc_line, col=1)
+    # the tool's own ///CRC line, else any in the file: one checksum may
+    # cover every block, so no block of such a file is written
+    crc_line = _crc_line(frame) if frame.info.get("crc") else cf.extra.get("crc_line")
+    if crc_line is not None:
+        tool = frame.type == "TOOL"
+        raise UcsioError(f"{frame.name}: this {'TOOL' if tool else 'UFRAME'}.CND carries a "
+                         "///CRC checksum that ucsio cannot compute, and a controller may reject "
+                         "a file whose checksum does not match: not patched, nothing written "
+                         f"(edit the {'tool' if tool else 'user frame'} on the pendant)",
+                         file=where.get("file"), line=crc_line, col=1)
     if frame.type == "UFRAME":
         warnings.append(TAUGHT_POINTS_WARNING.format(name=frame.name) + _in_jobs(cf, frame))
         # the patch keeps the file's line endings: say that these will not load
