@@ -14,8 +14,8 @@ throughput over the Yaskawa corpus.
   Target: ``frames`` <= 2x the floor on each; ``frames --tree``, ``check``
   and ``diff`` (of the two versions of the Komatsu files) are reported.
 - Throughput: ``ucsio.cli.main(["check", ...])`` in one process over every
-  file of the Yaskawa corpus ucsio reads (the .CND files and both
-  RBCALIB.DAT), CPU time, best of --repeat after a warm-up. Target >= 1 MB/s.
+  file of the Yaskawa corpus ucsio reads (the .CND files, the jobs, both
+  RBCALIB.DAT and VAR.DAT), CPU time, best of --repeat after a warm-up. Target >= 1 MB/s.
 """
 from __future__ import annotations
 
@@ -60,10 +60,11 @@ def full_uframe_cnd() -> bytes:
 
 
 def read_files() -> list[Path]:
-    """Every Yaskawa corpus file ucsio reads: the .CND files and RBCALIB.DAT
-    (the earlier versions, .at-3ec0b394, too)."""
+    """Every Yaskawa corpus file ucsio reads: the .CND files, the jobs,
+    RBCALIB.DAT and VAR.DAT (the earlier versions, .at-3ec0b394, too); not
+    SYSTEM.SYS (refused: not read yet), the README and the manifest."""
     return sorted(p for p in YASKAWA.iterdir()
-                  if ".CND" in p.name.upper() or "RBCALIB.DAT" in p.name.upper())
+                  if p.suffix.lower() not in (".md", ".tsv") and "SYSTEM.SYS" not in p.name.upper())
 
 
 def cold(rounds: int, tmp: Path) -> bool:
@@ -74,6 +75,8 @@ def cold(rounds: int, tmp: Path) -> bool:
     cal, cal_before = YASKAWA / (KOMATSU + "RBCALIB.DAT"), YASKAWA / (KOMATSU +
                                                                       "RBCALIB.DAT.at-3ec0b394")
     uframe = YASKAWA / "icors2__Yaskawa-Job-Helper__fixtures__transform__UFRAME.CND"
+    fenders = YASKAWA / "lukelalondePZ__Fiberdome-GP88-Spindle-Cell__FMTV_FENDERS.JBI"
+    var = YASKAWA / (KOMATSU + "VAR.DAT")
     python = bench_cold.PYTHON = plain_venv(tmp / "venv")
     ENV["PYTHONPATH"] = str(ROOT / "src")
     ENV["UCSIO_CACHE_DIR"] = str(tmp / "cache")
@@ -85,7 +88,10 @@ def cold(rounds: int, tmp: Path) -> bool:
             ("UFRAME.CND, 63 frames, CRLF", full, ["frames", str(full)], 2.0),
             ("UFRAME.CND, 63 frames, CRLF", full, ["check", str(full)], None),
             ("RBCALIB.DAT", cal, ["frames", str(cal)], 2.0),
-            ("RBCALIB.DAT", cal, ["diff", str(cal_before), str(cal)], None)]
+            ("RBCALIB.DAT", cal, ["diff", str(cal_before), str(cal)], None),
+            ("job, 548 positions (40 KB)", fenders, ["frames", str(fenders)], None),
+            ("job, 548 positions (40 KB)", fenders, ["check", str(fenders)], None),
+            ("VAR.DAT, 250 P rows", var, ["check", str(var)], None)]
     ok = True
     print(f"{'file':<30} {'command':<13} {'ucsio':>9} {'floor':>9} {'ratio':>6}  target")
     for label, path, args, target in rows:
