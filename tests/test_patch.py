@@ -448,12 +448,12 @@ def test_file_changed_between_read_and_write(tmp_path, capsys, monkeypatch):
     assert f.read_bytes() == edited and temp_files(tmp_path) == []
     # CLI: the change lands while the patch is being planned
     import ucsio.review.patch as patch_mod
-    real_verify = patch_mod.verify
+    real_verify = patch_mod.verify_patch
 
     def verify_and_touch(result):
         real_verify(result)
         f.write_bytes(edited + b"\n")
-    monkeypatch.setattr(patch_mod, "verify", verify_and_touch)
+    monkeypatch.setattr(patch_mod, "verify_patch", verify_and_touch)
     rc = main(["patch", str(f), "--frame", "wobjTable", "--set", "1,2,3,4,5,6",
                "--in-place", "--backup"])
     assert rc == 2 and "changed on disk" in capsys.readouterr().err

@@ -108,7 +108,7 @@ def test_planning_walk_through_runs_as_written(tmp_path):
         code = int(m.group(2)) if m and m.group(2) else 0
         command = line[:m.start()] if m else line
         expected.append((command, code))
-        lines += [f'echo "@@start {len(expected) - 1}"', command, f'echo "@@rc $?"']
+        lines += [f'echo "@@start {len(expected) - 1}"', command, 'echo "@@rc $?"']
     env = dict(os.environ)
     res = subprocess.run(["bash", "-c", "\n".join(lines)], cwd=tmp_path, env=env,
                          capture_output=True, text=True, timeout=600)

@@ -29,7 +29,7 @@ from ..vendors.common.write import Change
 from .names import find_frame
 from .reference import measured_in_parent, object_frame_basis, reference_problem
 from .result import PatchResult
-from .verify import verify
+from .verify import verify as verify_patch
 
 def same_rotation_tolerance(vendor: str) -> float:
     """How far (deg) a triple nearer the old angles may stand from the
@@ -138,7 +138,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
                          new_bytes=new_bytes, changes=changes, warnings=warnings,
                          flagged_before=frozenset((lint.code, lint.message) for lint in cf.lints))
     if verify:
-        globals()["verify"](result)     # the function (the keyword shadows its name)
+        verify_patch(result)
     return result
 
 
