@@ -101,6 +101,19 @@ def test_measured_patch_of_every_corpus_user_frame(tmp_path, capsys, name):
     assert b"\r\n" not in path.read_bytes()
 
 
+def test_a_patch_that_changes_nothing_warns_of_nothing(tmp_path, capsys):
+    """The taught-points warning is about a changed frame: a patch to the
+    values the file already holds says so, and nothing else."""
+    data = corpus_uframe()
+    pose = read(data).frame("UF2")
+    values = [pose.numbers[k].text for k in ("x", "y", "z", "rz", "ry", "rx")]
+    path = write(tmp_path, "UFRAME.CND", data)
+    code, out, err = cli(capsys, "patch", path, "--frame", "UF2", "--set", ",".join(values))
+    assert code == 0 and "nothing to change" in out, (out, err)
+    assert "RORG" not in err and "warning" not in err, err
+    assert path.read_bytes() == data
+
+
 def test_set_writes_crlf_fixture_in_place(tmp_path, capsys):
     """--set X,Y,Z,A,B,C takes SPEC's A, B, C: A = rz, B = ry, C = rx."""
     path = write(tmp_path, "UFRAME.CND", UFRAMES)

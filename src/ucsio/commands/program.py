@@ -53,12 +53,12 @@ def add_arguments(p) -> None:
                    help="the frame the program sets: UF3, UT2 (UF3@2: group 2)")
     p.add_argument("--group", type=int, default=None, metavar="G",
                    help="motion group (default 1)")
-    p.add_argument("--pr", type=int, default=None, metavar="N", help="the position register")
+    p.add_argument("--pr", type=int, default=None, metavar="N", help="FANUC: the position register")
     p.add_argument("--posreg", metavar="posreg.va",
-                   help="the robot's posreg.va: take an unused register (or check --pr)")
-    p.add_argument("--comment", metavar="TEXT", help="the frame's comment: UFRAME[k:TEXT]")
+                   help="FANUC: the robot's posreg.va: take an unused register (or check --pr)")
+    p.add_argument("--comment", metavar="TEXT", help="FANUC: the frame's comment: UFRAME[k:TEXT]")
     p.add_argument("--wpr", metavar="W,P,R",
-                   help="UTk: the tool's W, P, R in degrees (default 0,0,0)")
+                   help="FANUC UTk: the tool's W, P, R in degrees (default 0,0,0)")
     p.add_argument("--p", type=int, default=None, metavar="N",
                    help="Yaskawa: the job loads its points into P N, N+1, N+2")
     p.add_argument("--var", metavar="VAR.DAT",

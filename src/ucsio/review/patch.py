@@ -91,8 +91,11 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
         raise UcsioError(f"{frame.name}: {vendors.missing(frame.vendor, 'frame writer')}: "
                          "nothing written", file=frame.file, line=frame.line, col=1)
     where = writer.where(frame)
+    # what the vendor says of writing the frame (a listing's copy is for
+    # review, taught points no longer give it): moot where nothing changes
+    about_writing: list[str] = []
     if writer.check_patchable is not None:      # FANUC: which listings are written back
-        writer.check_patchable(cf, frame, where, warnings)
+        writer.check_patchable(cf, frame, where, about_writing)
     if frame.info.get("ufprog") is False and frame.info.get("component", "uframe") == "uframe":
         raise UcsioError(f"{frame.name}: moving user frame (ufprog FALSE, ufmec "
                          f"{frame.info.get('ufmec')!r}): the controller sets it; not patchable",
@@ -134,6 +137,8 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
             changes += plan(f, pose)
     doc = cf.document
     new_bytes = doc.edited_bytes(writer.edits_for(frame, changes))
+    if new_bytes != doc.raw:
+        warnings[:0] = about_writing
     result = PatchResult(path=doc.path, frame=frame, pose=pose, document=doc,
                          new_bytes=new_bytes, changes=changes, warnings=warnings,
                          flagged_before=frozenset((lint.code, lint.message) for lint in cf.lints))
