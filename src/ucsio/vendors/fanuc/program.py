@@ -29,7 +29,7 @@ import os
 from ...errors import UcsioError
 from ...geometry.frames import Pose
 from ...parsing.document import Document
-from ...values import Value
+from ..common.program import ProgramMade
 from ..common.readback import cannot_hold, reads_back, refuse_flagged_values
 from .write import fanuc_number, tp_literal, wpr_to_write
 
@@ -48,7 +48,7 @@ ATTR = ("OWNER\t\t= MNEDITOR;", 'COMMENT\t\t= "{comment}";', "PROG_SIZE\t= 0;", 
         "CONTROL_CODE\t= 00000000 00000000;")
 
 
-class ProgramResult(Value):
+class ProgramResult(ProgramMade):
     """A program made, not yet written: its ``text`` (CRLF), ``name``
     (/PROG), the frame it sets (``frame`` UF3 / UT2 / UF3@2, ``type``,
     ``number``, ``group``), the register ``pr`` and where it came from
@@ -58,14 +58,6 @@ class ProgramResult(Value):
 
     __slots__ = ("text", "name", "frame", "type", "number", "group", "pr", "pr_from", "comment",
                  "values", "pose", "warnings", "written")
-
-    def __init__(self, **fields: Any):
-        for k in self.__slots__:
-            setattr(self, k, fields.get(k))
-
-    @property
-    def data(self) -> bytes:
-        return self.text.encode("ascii")
 
     def summary(self) -> str:
         """What ``ucsio program -o`` says it wrote."""

@@ -55,7 +55,7 @@ import re
 from ...errors import UcsioError
 from ...geometry import rotations as rot
 from ...geometry.frames import Pose
-from ...values import Value
+from ..common.program import ProgramMade
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -75,7 +75,7 @@ _OPERAND = re.compile(r"(?<![A-Za-z0-9_$#])P([0-9]+)\b")
 _INDIRECT = re.compile(r"(?<![A-Za-z0-9_$#])P\[")
 
 
-class JobResult(Value):
+class JobResult(ProgramMade):
     """A job made, not yet written: its ``text`` (CRLF), ``name`` (//NAME),
     the frame it sets (``frame`` UF2, ``number``, ``group``), the P
     variables ``p`` and where they came from (``p_from``: "--p" or the
@@ -85,14 +85,6 @@ class JobResult(Value):
 
     __slots__ = ("text", "name", "frame", "number", "group", "p", "p_from", "points", "values",
                  "warnings", "written")
-
-    def __init__(self, **fields: Any):
-        for k in self.__slots__:
-            setattr(self, k, fields.get(k))
-
-    @property
-    def data(self) -> bytes:
-        return self.text.encode("ascii")
 
     def summary(self) -> str:
         v = self.values
