@@ -173,3 +173,51 @@ def test_bad_three_point_options_exit_2_and_write_nothing(tmp_path, capsys, opts
     out = tmp_path / "solution.json"
     assert main(["solve", str(meas), "--tcp", "0,0,0", "-o", str(out), *opts]) == 2
     assert says in capsys.readouterr().err and not out.exists()
+
+
+def test_many_points_pick_from_the_extremes_quickly():
+    """Above EXACT_UP_TO used points the rule runs on the extremes (no n²
+    distances): on a box's points the farthest pair is two opposite corners."""
+    rng = np.random.default_rng(5)
+    pts = rng.uniform(0.0, 1.0, (3 * three_points.EXACT_UP_TO, 3)) * [1000.0, 600.0, 300.0]
+    corners = np.array([[0.0, 0, 0], [1000.0, 600, 300]])
+    pts[[17, 4000]] = corners
+    i, j, k = three_points.pick_three(pts)
+    assert (i, j) == (17, 4000)
+    off = np.linalg.norm(np.cross(pts - pts[i], pts[j] - pts[i]), axis=1)
+    assert off[k] > 0.9 * off.max()          # the largest triangle among the extremes'
+
+
+def test_the_reach_box_shift_is_the_shortest_one():
+    """Against scipy's constrained minimiser: the shortest a, b, c that put
+    ORG, XX and XY inside the box."""
+    from scipy.optimize import minimize
+
+    box = (1000.0, 1500.0, -600.0, 0.0, 500.0, 1000.0)
+    got = three_points.setting(TRUTH_R, TRUTH_T, 200.0, (0, 0, 0), None, box)
+    lo, hi = np.array(box[0::2]), np.array(box[1::2])
+    steps = [np.zeros(3), 200.0 * TRUTH_R[:, 0], 200.0 * TRUTH_R[:, 1]]
+
+    def inside(s):
+        return np.concatenate([np.concatenate([hi - p, p - lo])
+                               for p in (TRUTH_T + TRUTH_R @ s + st for st in steps)])
+    best = minimize(lambda s: s @ s / 1e4, np.zeros(3), jac=lambda s: 2 * s / 1e4,
+                    constraints=[{"type": "ineq", "fun": inside}], method="SLSQP",
+                    options={"ftol": 1e-14, "maxiter": 500})
+    o = np.array([got["offset"][k] for k in "abc"])
+    assert inside(best.x).min() > -1e-6 and inside(o).min() > -1e-6
+    assert np.allclose(o, best.x, atol=1e-3)
+
+
+def test_the_text_states_the_offset_to_take_back(tmp_path, capsys):
+    laser, robot = measured(0.0, 0)
+    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
+    rows += [f"P{k + 1}," + ",".join(f"{v:.4f}" for v in (*laser[k], *robot[k])) + ",0,0,0"
+             for k in range(len(laser))]
+    meas = tmp_path / "m.csv"
+    meas.write_text("\n".join(rows) + "\n")
+    assert main(["solve", str(meas), "--tcp", "0,0,0",
+                 "--reach-box", "1000,1500,-600,0,500,1000"]) == 0
+    out = capsys.readouterr().out
+    assert "three-point frame (a pendant's construction from" in out
+    assert "moved into the reach box" in out and "take the origin back by" in out
