@@ -28,6 +28,16 @@ def measured(noise: float, seed: int):
     return laser, robot
 
 
+def write_csv(folder, laser, robot):
+    """The points as a measurement CSV (flange positions: orientation 0, --tcp 0,0,0)."""
+    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
+    rows += [f"P{k + 1}," + ",".join(f"{v:.4f}" for v in (*laser[k], *robot[k])) + ",0,0,0"
+             for k in range(len(laser))]
+    meas = folder / "m.csv"
+    meas.write_text("\n".join(rows) + "\n")
+    return meas
+
+
 def compare(laser, robot, at=None, reach=1000.0):
     fit = horn.absolute_orientation(laser, robot, np.ones(len(laser)))
     names = [f"P{k + 1}" for k in range(len(laser))]
@@ -137,17 +147,13 @@ def test_a_reach_box_moves_the_points_inside_and_states_the_offset():
     R, t = rebuilt(got["points"])
     assert angle_deg(R, TRUTH_R) < 1e-3                       # the orientation exactly
     o = got["offset"]
-    back = t - TRUTH_R @ np.array([o["a"], o["b"], o["c"]])   # the origin taken back
+    back = t - TRUTH_R @ np.array([o["x"], o["y"], o["z"]])   # the origin taken back
     assert np.linalg.norm(back - TRUTH_T) < 1e-3
 
 
 def test_solve_reports_both_and_keeps_its_keys(tmp_path):
     laser, robot = measured(0.02, 3)
-    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
-    rows += [f"P{k + 1}," + ",".join(f"{v:.4f}" for v in (*laser[k], *robot[k])) + ",0,0,0"
-             for k in range(len(laser))]
-    meas = tmp_path / "m.csv"
-    meas.write_text("\n".join(rows) + "\n")
+    meas = write_csv(tmp_path, laser, robot)
     res = api.solve(str(meas), tcp=(0, 0, 0), three_point_distance=150)
     assert res.accepted and {"frame", "points", "precision"} <= set(res)
     assert [p["name"] for p in res["three_point_frame"]["points"]] == brute_force_rule(laser)
@@ -164,12 +170,7 @@ def test_solve_reports_both_and_keeps_its_keys(tmp_path):
     (["--three-point-distance", "0"], "finite number > 0"),
 ])
 def test_bad_three_point_options_exit_2_and_write_nothing(tmp_path, capsys, opts, says):
-    laser, robot = measured(0.0, 0)
-    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
-    rows += [f"P{k + 1}," + ",".join(f"{v:.4f}" for v in (*laser[k], *robot[k])) + ",0,0,0"
-             for k in range(len(laser))]
-    meas = tmp_path / "m.csv"
-    meas.write_text("\n".join(rows) + "\n")
+    meas = write_csv(tmp_path, *measured(0.0, 0))
     out = tmp_path / "solution.json"
     assert main(["solve", str(meas), "--tcp", "0,0,0", "-o", str(out), *opts]) == 2
     assert says in capsys.readouterr().err and not out.exists()
@@ -181,9 +182,9 @@ def test_many_points_pick_from_the_extremes_quickly():
     rng = np.random.default_rng(5)
     pts = rng.uniform(0.0, 1.0, (3 * three_points.EXACT_UP_TO, 3)) * [1000.0, 600.0, 300.0]
     corners = np.array([[0.0, 0, 0], [1000.0, 600, 300]])
-    pts[[17, 4000]] = corners
+    pts[[17, 1400]] = corners
     i, j, k = three_points.pick_three(pts)
-    assert (i, j) == (17, 4000)
+    assert (i, j) == (17, 1400)
     off = np.linalg.norm(np.cross(pts - pts[i], pts[j] - pts[i]), axis=1)
     assert off[k] > 0.9 * off.max()          # the largest triangle among the extremes'
 
@@ -204,18 +205,13 @@ def test_the_reach_box_shift_is_the_shortest_one():
     best = minimize(lambda s: s @ s / 1e4, np.zeros(3), jac=lambda s: 2 * s / 1e4,
                     constraints=[{"type": "ineq", "fun": inside}], method="SLSQP",
                     options={"ftol": 1e-14, "maxiter": 500})
-    o = np.array([got["offset"][k] for k in "abc"])
+    o = np.array([got["offset"][k] for k in "xyz"])
     assert inside(best.x).min() > -1e-6 and inside(o).min() > -1e-6
     assert np.allclose(o, best.x, atol=1e-3)
 
 
 def test_the_text_states_the_offset_to_take_back(tmp_path, capsys):
-    laser, robot = measured(0.0, 0)
-    rows = ["point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,robot_a,robot_b,robot_c"]
-    rows += [f"P{k + 1}," + ",".join(f"{v:.4f}" for v in (*laser[k], *robot[k])) + ",0,0,0"
-             for k in range(len(laser))]
-    meas = tmp_path / "m.csv"
-    meas.write_text("\n".join(rows) + "\n")
+    meas = write_csv(tmp_path, *measured(0.0, 0))
     assert main(["solve", str(meas), "--tcp", "0,0,0",
                  "--reach-box", "1000,1500,-600,0,500,1000"]) == 0
     out = capsys.readouterr().out

@@ -426,8 +426,8 @@ def three_points_text(sp: dict) -> str:
     if sp["moved"]:
         o = sp["offset"]
         lines.append(f"  moved into the reach box: these give the measured orientation with the "
-                     f"origin at {o['a']:.3f}, {o['b']:.3f}, {o['c']:.3f} in the measured frame; "
-                     f"take the origin back by {-o['a']:.3f}, {-o['b']:.3f}, {-o['c']:.3f} "
+                     f"origin at {o['x']:.3f}, {o['y']:.3f}, {o['z']:.3f} in the measured frame; "
+                     f"take the origin back by {-o['x']:.3f}, {-o['y']:.3f}, {-o['z']:.3f} "
                      "along the frame's own axes")
     return "\n".join(lines)
 

@@ -73,7 +73,7 @@ def pick_three(points: np.ndarray) -> tuple[int, int, int] | None:
 #: more used points than this: the rule runs on the points extreme along 13
 #: directions (axes, face and space diagonals) and the farthest from their
 #: mean, not on every pair (n² distances)
-EXACT_UP_TO = 2000
+EXACT_UP_TO = 500
 
 
 def _extremes(points: np.ndarray) -> np.ndarray:
@@ -190,7 +190,7 @@ def smallest_shift(A: np.ndarray, b: np.ndarray) -> np.ndarray | None:
     the minimum-norm point of a polyhedron is the projection of 0 onto the
     affine hull of at most three of its constraints; try every such set."""
     tol = 1e-9 * max(1.0, float(np.abs(b).max()))
-    if np.all(b >= -tol):
+    if np.all(b >= 0.0):
         return np.zeros(3)
     best = None
     for size in (1, 2, 3):
@@ -222,17 +222,17 @@ def setting(R, t, distance: float, tcp, tool: str | None, box=None) -> dict[str,
             raise UcsioError(f"--reach-box: the three points {distance:g} mm apart along the "
                              "frame's axes fit nowhere inside the box; give a smaller "
                              "--three-point-distance or a larger box")
-        shift = np.round(found, 9) + 0.0
+        shift = found
     org = t + R @ shift
     pts = {"ORG": org, "XX": org + steps[1], "XY": org + steps[2]}
-    a, b_, c = shift.tolist()
+    a, b, c = shift.tolist()
     out: dict[str, Any] = {
         "distance": float(distance),
         "points": [{"role": k, "x": float(v[0]), "y": float(v[1]), "z": float(v[2])}
                    for k, v in pts.items()],
         "tcp": {"x": float(tcp[0]), "y": float(tcp[1]), "z": float(tcp[2]), "tool": tool},
         "reach_box": None if box is None else list(box),
-        "offset": {"a": a, "b": b_, "c": c},
+        "offset": {"x": a, "y": b, "z": c},
         "moved": bool(np.any(shift != 0.0)),
     }
     return out
