@@ -123,7 +123,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
           gate: str = "reach", uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
           seed: int = 0, angle_units: str = "deg",
-          quaternion_order: str = "wxyz") -> SolveResult:
+          quaternion_order: str = "wxyz", three_point_distance: float = 200.0,
+          reach_box: str | Iterable[float] | None = None) -> SolveResult:
     """``ucsio solve --json``: the measured UCS in robot world (Horn's
     method, leave-one-out outlier exclusion, the determinacy gate).
 
@@ -142,7 +143,10 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
     (Monte Carlo samples), ``sigma_laser``/``sigma_robot`` (mm per axis),
     ``seed``, ``angle_units`` ("deg" or "rad": a CSV's robot_a/b/c or
     robot_w/p/r), ``quaternion_order`` ("wxyz" or "xyzw": a CSV's
-    robot_q1..q4): as the options of those names.
+    robot_q1..q4): as the options of those names. ``three_point_distance``
+    (mm) and ``reach_box`` ("XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX" or six numbers,
+    robot base mm): the three points that set the frame by hand
+    (``three_points``, beside ``three_point_frame``).
 
     A rejected dataset is a result with ``accepted`` False and ``reason``;
     one a unit or order mistake explains is a UcsioError that names it.
@@ -154,7 +158,8 @@ def solve(measurement: PathLike | None = None, tcp: TcpLike | None = None, *,
         threshold=threshold, min_points=min_points, exclude=list(exclude),
         no_exclusion=no_exclusion, reach=reach, at=at, gate=gate, uncertainty=uncertainty,
         sigma_laser=sigma_laser, sigma_robot=sigma_robot, seed=seed, angle_units=angle_units,
-        quaternion_order=quaternion_order)
+        quaternion_order=quaternion_order, three_point_distance=three_point_distance,
+        reach_box=reach_box)
     result = _document(SolveResult, doc)
     result.__dict__["solution"] = sol
     return result

@@ -45,6 +45,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the determinacy gate judges the 95 %% displacement of a point this far "
                         f"from the points' centroid against --threshold (default {defaults.REACH:g})")
     add_working_point_options(p)
+    add_three_point_options(p)
     add_uncertainty_options(p, "of the frame")
     p.add_argument("-o", "--output", metavar="SOLUTION.json", default=None,
                    help="write the result as JSON (atomically); - for standard output "
@@ -58,6 +59,16 @@ def add_working_point_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--gate", choices=("reach", "at"), default="reach",
                    help="what the determinacy gate judges: the generic point --reach mm from "
                         "the centroid (default), or the worst working point of --at")
+
+
+def add_three_point_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--three-point-distance", type=float, default=200.0, metavar="MM",
+                   help="how far the +X and XY points that set the measured frame by hand lie "
+                        "from its origin (default 200)")
+    p.add_argument("--reach-box", metavar="XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX", default=None,
+                   help="where the robot reaches (robot base, mm): the three points move "
+                        "inside it along the frame's axes, and the offset to take back is "
+                        "stated (docs/measurements.md)")
 
 
 def add_source_options(p: argparse.ArgumentParser) -> None:
@@ -188,12 +199,14 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
           exclude=(), no_exclusion: bool = False, reach: float = defaults.REACH, at=None,
           gate: str = "reach", uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
-          seed: int = 0, angle_units: str = "deg", quaternion_order: str = "wxyz"):
+          seed: int = 0, angle_units: str = "deg", quaternion_order: str = "wxyz",
+          three_point_distance: float = 200.0, reach_box=None):
     """The command's work, for ``run`` and ``ucsio.api.solve`` alike: (the
     solver's Solution, --json's document without ``schema_version``, the
     readers' warnings). Each keyword is the option of that name; ``at`` may
-    also be ``readers.points.Points``."""
+    also be ``readers.points.Points``; ``reach_box`` also six numbers."""
     from ..method import solve as solver
+    from ..method import three_points
 
     if uncertainty and uncertainty < 2:
         raise UcsioError("--uncertainty N: needs at least 2 samples")
@@ -201,6 +214,8 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
         solver.check_sigmas(sigma_laser, sigma_robot)
     tool_warnings: list[str] = []
     fixed, solve_tcp = resolve_tcp(tcp, tool, tool_warnings)
+    three_point_distance = three_points.check_distance(three_point_distance)
+    box = three_points.parse_box(reach_box)
     solver.check_sigmas(sigma_laser, sigma_robot)
     points = at
     if isinstance(at, (str, os.PathLike)):
@@ -244,9 +259,27 @@ def solve(measurement=None, *, laser=None, robot=None, laser_units: str = "mm", 
                                             seed)
     elif uncertainty:
         solver.solution_uncertainty(meas, sol, uncertainty, sigma_laser, sigma_robot, seed)
+    by_three_points(meas, sol, points, reach, three_point_distance, box)
     result = sol.as_dict()
     result["warnings"] = warnings + result["warnings"]
     return sol, result, warnings
+
+
+def by_three_points(meas, sol, points, reach: float, distance: float, box) -> None:
+    """The pendant's 3-point view of a fit (``method.three_points``): the
+    frame three of the measured points give, beside the fit; and, for an
+    accepted fit, the three points that set it by hand."""
+    import numpy as np
+    from ..method import three_points
+
+    R = np.array(sol.pose.matrix, dtype=float)
+    t = np.array(sol.pose.t, dtype=float)
+    used = np.array([p.used for p in sol.points])
+    sol.three_point_frame = three_points.compare(meas.names, meas.laser,
+                                                 meas.robot_points(sol.tcp), meas.weights,
+                                                 used, R, t, reach, points)
+    if sol.accepted:
+        sol.three_points = three_points.setting(R, t, distance, sol.tcp, sol.tool, box)
 
 
 def run(args) -> int:
@@ -331,6 +364,10 @@ def render(sol, stream=None) -> str:
                   f"[{ci[k][0]:.4f}, {ci[k][1]:.4f}]", f"{an[k]:.4f}"]
                  for k in ("x", "y", "z", "angle")]
         lines.append(table(["", "unit", "std", "ci95", "analytical std"], urows, right={2, 4}))
+    if sol.three_point_frame:
+        lines.append(three_point_frame_text(sol.three_point_frame))
+    if sol.three_points:
+        lines.append(three_points_text(sol.three_points))
     lines.extend(f"warning: {w}" for w in sol.warnings)
     if sol.diagnosis:                 # not the measurement's fault: no "measure again"
         lines.append(paint(f"REJECTED: {sol.reason}", "fail", stream))
@@ -354,6 +391,45 @@ def working_points_text(rows, worst, source=None, gate: str = "reach", shown: in
     tail = f"worst working point: {worst['name']} within {worst['at_95']:.3f} mm (95 %)" \
         if worst else "no working points"
     return f"{head}\n{body}\n{tail}"
+
+
+def three_point_frame_text(tp: dict, shown: int = 10) -> str:
+    """The pendant's frame from three measured points beside the best fit."""
+    from ..output import table
+
+    f = tp["frame"]
+    org, xx, xy = (p["name"] for p in tp["points"])
+    rows = sorted(tp["working_points"], key=lambda r: -r["dist"])[:shown]
+    body = table(["working point", "x", "y", "z", "apart mm"],
+                 [[r["name"], f"{r['x']:.1f}", f"{r['y']:.1f}", f"{r['z']:.1f}",
+                   f"{r['dist']:.3f}"] for r in rows], right={1, 2, 3, 4})
+    return "\n".join([
+        f"three-point frame (a pendant's construction from {org} origin, {xx} +X, {xy} XY):",
+        f"  x y z   {f['x']:.3f}  {f['y']:.3f}  {f['z']:.3f}",
+        f"  a b c   {f['a']:.4f}  {f['b']:.4f}  {f['c']:.4f}   (KUKA)",
+        f"  from the best fit: origin {tp['dist']:.3f} mm, axes {tp['angle']:.4f} deg; "
+        "where the two frames put the working points:", body])
+
+
+def three_points_text(sp: dict) -> str:
+    """The three TCP positions that set the measured frame on a pendant."""
+    from ..output import fmt, table
+
+    tcp = sp["tcp"]
+    tool = f" (tool {tcp['tool']})" if tcp["tool"] else ""
+    body = table(["point", "x", "y", "z"],
+                 [[p["role"], f"{p['x']:.3f}", f"{p['y']:.3f}", f"{p['z']:.3f}"]
+                  for p in sp["points"]], right={1, 2, 3})
+    lines = [f"to set the measured frame by its three points ({sp['distance']:g} mm apart; "
+             f"robot base, positions of the TCP {fmt(tcp['x'])}, {fmt(tcp['y'])}, "
+             f"{fmt(tcp['z'])}{tool}):", body]
+    if sp["moved"]:
+        o = sp["offset"]
+        lines.append(f"  moved into the reach box: these give the measured orientation with the "
+                     f"origin at {o['x']:.3f}, {o['y']:.3f}, {o['z']:.3f} in the measured frame; "
+                     f"take the origin back by {-o['x']:.3f}, {-o['y']:.3f}, {-o['z']:.3f} "
+                     "along the frame's own axes")
+    return "\n".join(lines)
 
 
 def _solved(sol) -> str:

@@ -88,6 +88,8 @@ class Solution:
     worst: dict[str, Any] | None = None       # --at: the working point predicted worst
     gate: str = "reach"                        # what the determinacy gate judged: reach | at
     at_source: str | None = None               # where the working points came from
+    three_point_frame: dict[str, Any] | None = None  # the pendant's frame (three_points.compare)
+    three_points: dict[str, Any] | None = None       # the points that set it (three_points.setting)
 
     def __post_init__(self) -> None:
         # a Solution built elsewhere (the batched solver) without a reason still says why
@@ -147,6 +149,10 @@ class Solution:
             d["at"] = self.at_source
         if self.covariance is not None:
             d["covariance"] = self.covariance
+        if self.three_point_frame is not None:
+            d["three_point_frame"] = self.three_point_frame
+        if self.three_points is not None:
+            d["three_points"] = self.three_points
         return d
 
 
