@@ -51,8 +51,9 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
     body = [f"{i:4d}:{'' if s.startswith('L ') else '  '}{s}" for i, s in enumerate(mn, 1)]
     text = "\r\n".join(head + ["/MN"] + body + ["/POS"] + pos + ["/END"]) + "\r\n"
     return MeasureProgram(text=text, name=settings.name, vendor="fanuc", frame=frame.name,
-                          tool=tool.name if tool is not None else "UT0", 
-                          points=[t.name for t in targets])
+                          tool=tool.name if tool is not None else "UT0",
+                          points=[t.name for t in targets],
+                          positions=[f"P[{k}]" for k in range(1, n + 1)])
 
 
 def _number(name: str, kind: str, option: str) -> int:
