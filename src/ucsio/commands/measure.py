@@ -19,18 +19,20 @@ DOWN = (180.0, 0.0, 0.0)    # W, P, R: the TCP's z along the frame's -Z
 
 def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float = 100.0,
          approach_dir=None, orientation=None, speed: float = 100.0, dwell=None,
-         output=None, vendor=None):
-    """The program (``vendors.common.measure.MeasureProgram``; nothing written)."""
+         output=None):
+    """The program (``vendors.common.measure.MeasureProgram``; nothing
+    written), in the language of CONTROLLER's vendor."""
     from .. import vendors
     from ..parsing.backup import load_one
     from ..review.names import find_frame
     from ..vendors.common.measure import Settings, Target
 
     cf = load_one(os.fspath(controller))
-    name = vendors.program_vendor(output, vendor or cf.vendor)
-    writer = vendors.get(name)
+    writer = vendors.get(cf.vendor)
     if writer.measurement_program is None:
-        raise UcsioError(vendors.missing(name, "measurement program writer"))
+        raise UcsioError(vendors.missing(cf.vendor, "measurement program writer"),
+                         file=cf.path)
+    vendors.program_vendor(output, cf.vendor)     # -o names another vendor's program: refused
     user = find_frame(cf, frame)
     _check_parent(user, "robot", f"--frame {frame}", "a user frame")
     held, offset = _tool(cf, tool, tcp)

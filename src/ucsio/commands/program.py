@@ -191,21 +191,20 @@ def run_measure(args) -> int:
     file is."""
     from ..errors import UsageError
     from . import measure
-    for option in ("group", "pr", "posreg", "comment", "wpr", "p", "var"):
+    for option in ("group", "pr", "posreg", "comment", "wpr", "p", "var", "vendor"):
         if getattr(args, option) is not None:
-            raise UsageError(f"ucsio program: --{option} sets a frame; it does not go with "
-                             "--measure")
+            raise UsageError(f"ucsio program: --{option} does not go with --measure (the "
+                             "controller's vendor writes the program, in its --frame)")
+    if args.json:
+        raise UsageError("ucsio program: --json does not go with --measure yet")
     result = measure.make(args.measure, args.solution, args.frame, tool=args.tool,
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
                           orientation=args.orientation, speed=args.speed, dwell=args.dwell,
-                          output=args.output, vendor=args.vendor)
+                          output=args.output)
     for w in result.warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.output and args.output != "-":
         measure.save(result, args.output)
-    if args.json:
-        emit_json({"measurement_program": result.as_dict()})
-        return 0
     if not args.output or args.output == "-":
         sys.stdout.flush()
         sys.stdout.buffer.write(result.data)
