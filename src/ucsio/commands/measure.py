@@ -25,7 +25,7 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
     from .. import vendors
     from ..parsing.backup import load_one
     from ..review.names import find_frame
-    from ..vendors.common.measure import Settings, Target
+    from ..vendors.common.measure import Settings
 
     cf = load_one(os.fspath(controller))
     writer = vendors.get(cf.vendor)
