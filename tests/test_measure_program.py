@@ -280,3 +280,49 @@ def test_the_whole_loop_finds_the_true_frame(cell, capsys):
         measured = np.asarray(got["frame"]["matrix"])
         within += np.linalg.norm((measured @ w - true @ w)[:3]) <= at_95
     assert within >= 15
+
+
+def test_names_the_pendant_cannot_hold(cell, capsys):
+    """A FANUC position's comment is the name solve pairs it by: a quote or
+    a character beyond ASCII is refused at the plan's line; a Yaskawa job
+    only comments the name (as '?'); a plan's file name beyond ASCII is
+    written '?' in the header."""
+    plan = cell / "plän.csv"
+    plan.write_text('point,laser_x,laser_y,laser_z\nA1,0,0,0\n"B""2",800,0,0\nC3,0,600,0\n',
+                    encoding="utf-8")
+    err = write_refused(capsys, cell, "--measure", plan, cell / "sysframe.va", "--frame", "UF1",
+                        "--tool", "UT1")
+    assert 'plän.csv:3' in err and "B\"2" in err.replace("\\", "")
+    plan.write_text("point,laser_x,laser_y,laser_z\nA1,0,0,0\nBé,800,0,0\nC3,0,600,0\n",
+                    encoding="utf-8")
+    write_refused(capsys, cell, "--measure", plan, cell / "sysframe.va", "--frame", "UF1",
+                  "--tool", "UT1")
+    out = cell / "M.JBI"
+    code, _, err = cli(capsys, "program", "--measure", plan, YASKAWA / "UFRAME.CND", "--frame",
+                       "UF1", "--tool", f"{YASKAWA / 'TOOL.CND'}:UT3", "-o", out)
+    assert code == 0, err
+    assert b"\r\n'B?\r\n" in out.read_bytes() and b"from pl?n.csv" in out.read_bytes()
+
+
+@pytest.mark.parametrize("option, value", [
+    ("--speed", "inf"), ("--speed", "nan"), ("--speed", "0"), ("--speed", "100.5"),
+    ("--approach", "0"), ("--approach", "-5"), ("--dwell", "-1"), ("--dwell", "inf"),
+    ("--approach-dir", "0,0,0"), ("--orientation", "180,nan,0"), ("--tcp", "0,0,inf")])
+def test_settings_a_program_cannot_hold(cell, capsys, option, value):
+    tool = ("--tool", "UT1") if option != "--tcp" else ()
+    write_refused(capsys, cell, "--measure", cell / "plan.csv", cell / "sysframe.va", "--frame",
+                  "UF1", *tool, option, value)
+
+
+def test_a_program_that_reads_back_otherwise_is_not_returned():
+    """The read-back check itself: a position 0.002 mm or 0.01 deg off, or
+    one missing, is an internal error."""
+    from ucsio.errors import UcsioError
+    from ucsio.geometry.frames import Pose
+    from ucsio.vendors.common.measure import check_read_back
+    pose = Pose.from_wpr(10.0, 20.0, 30.0, 170.0, 5.0, -40.0)
+    check_read_back("M.LS", [("A", pose)], [("A", (10.0004, 20.0, 30.0, 170.0, 5.0, -40.0))])
+    for got in ([("A", (10.002, 20.0, 30.0, 170.0, 5.0, -40.0))],
+                [("A", (10.0, 20.0, 30.0, 170.01, 5.0, -40.0))], []):
+        with pytest.raises(UcsioError, match="internal error"):
+            check_read_back("M.LS", [("A", pose)], got)

@@ -27,6 +27,7 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
     from ..review.names import find_frame
     from ..vendors.common.measure import Settings
 
+    _check_settings(approach, speed, dwell)
     cf = load_one(os.fspath(controller))
     writer = vendors.get(cf.vendor)
     if writer.measurement_program is None:
@@ -39,15 +40,27 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
     planned, warnings = _plan(plan)
     rotations = _rotations(planned, user, held, orientation, writer)
     direction = _direction(approach_dir)
-    if not approach > 0 or not speed > 0 or (dwell is not None and not dwell >= 0):
-        raise UcsioError("--approach and --speed are positive, --dwell is 0 or more")
-    targets = [_target(n, xyz, r, offset, approach, direction)
-               for n, xyz, r in zip(planned.names, planned.laser, rotations)]
-    settings = Settings(speed, dwell, approach, os.path.basename(os.fspath(plan)),
-                        _program_name(output))
+    targets = [_target(n, line, xyz, r, offset, approach, direction)
+               for n, line, xyz, r in zip(planned.names, planned.lines, planned.laser,
+                                          rotations)]
+    settings = Settings(speed, dwell, approach, os.fspath(plan),
+                        os.path.basename(os.fspath(plan)), _program_name(output))
     result = writer.measurement_program(user, held, targets, settings)
     result.warnings = warnings + list(result.warnings)
     return result
+
+
+def _check_settings(approach: float, speed: float, dwell) -> None:
+    """Finite, and what a move can be: a distance and a speed above 0, a
+    wait of 0 or more."""
+    import math
+    for option, value, least in (("--approach", approach, 0.0), ("--speed", speed, 0.0),
+                                 ("--dwell", dwell, None)):
+        if value is None:
+            continue
+        if not math.isfinite(value) or (value <= least if least is not None else value < 0):
+            bound = "above 0" if least is not None else "0 or more"
+            raise UcsioError(f"{option} {value:g}: a finite number {bound}")
 
 
 def _plan(plan):
@@ -122,7 +135,7 @@ def _direction(approach_dir):
     return tuple(v / norm for v in d)
 
 
-def _target(name, xyz, r, offset, approach, direction):
+def _target(name, line, xyz, r, offset, approach, direction):
     """The written tool's pose at the point (the flange's where ``offset``,
     --tcp, is not written as a tool) and above it."""
     import numpy as np
@@ -131,7 +144,8 @@ def _target(name, xyz, r, offset, approach, direction):
     m = np.asarray(r, dtype=float)
     at = np.asarray(xyz, dtype=float) - m @ np.asarray(offset, dtype=float)
     above = at + approach * np.asarray(direction)
-    return Target(name, Pose.from_matrix(m, tuple(at)), Pose.from_matrix(m, tuple(above)))
+    return Target(name, line, Pose.from_matrix(m, tuple(at)),
+                  Pose.from_matrix(m, tuple(above)))
 
 
 def _program_name(output) -> str:

@@ -21,7 +21,7 @@ the approach positions P[n+1]..P[2n] with the name and " UP". X Y Z to
 from __future__ import annotations
 
 from ...errors import UcsioError
-from ..common.measure import MeasureProgram, header
+from ..common.measure import MeasureProgram, check_read_back, header
 from .program import ATTR, COMMENT_MAX, parse_frame
 
 CONFIG = "N U T, 0, 0, 0"
@@ -33,11 +33,14 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
     (a UFk of group 1) with ``tool`` (a UTk, or None: the faceplate)."""
     uf = _number(frame.name, "UFRAME", "--frame")
     ut = 0 if tool is None else _number(tool.name, "UTOOL", "--tool")
+    _check_speed(settings.speed)
+    for t in targets:
+        _check_name(t, settings.plan)
     tool_name = tool.name if tool is not None else "UT0 (the faceplate, --tcp)"
     n = len(targets)
     mn = [f"! {line} ;" for line in header(settings, frame.name, tool_name)]
     mn += [f"UFRAME_NUM={uf} ;", f"UTOOL_NUM={ut} ;"]
-    move = f"{settings.speed:g}mm/sec FINE    ;"
+    move = f"{settings.speed:.0f}mm/sec FINE    ;"
     stop = "PAUSE ;" if settings.dwell is None else f"WAIT {settings.dwell:.2f}(sec) ;"
     for k, t in enumerate(targets, 1):
         above, at = _position(n + k, t.name + " UP"), _position(k, t.name)
@@ -50,10 +53,39 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
         for a in ATTR]
     body = [f"{i:4d}:{'' if s.startswith('L ') else '  '}{s}" for i, s in enumerate(mn, 1)]
     text = "\r\n".join(head + ["/MN"] + body + ["/POS"] + pos + ["/END"]) + "\r\n"
+    _read_back(text, settings.name, targets)
     return MeasureProgram(text=text, name=settings.name, vendor="fanuc", frame=frame.name,
                           tool=tool.name if tool is not None else "UT0",
                           points=[t.name for t in targets],
                           positions=[f"P[{k}]" for k in range(1, n + 1)])
+
+
+def _check_speed(speed: float) -> None:
+    if speed != round(speed) or not 1 <= speed <= 2000:
+        raise UcsioError(f"--speed {speed:g}: a TP program's linear speed is a whole number of "
+                         "mm/sec, 1...2000")
+
+
+def _check_name(target, plan: str) -> None:
+    """A point's name is the comment it pairs by: printable ASCII without
+    the quote that ends it."""
+    bad = [c for c in target.name if not " " <= c <= "~" or c == '"']
+    if bad:
+        raise UcsioError(f"point {target.name!r}: a TP position's comment is printable ASCII "
+                         "without \" (it is the name solve pairs the position by); rename it",
+                         file=plan, line=target.line)
+
+
+def _read_back(text: str, name: str, targets) -> None:
+    """The positions as ucsio's TP reader reads them: the ones meant."""
+    from ...parsing.document import Document
+    from .tp import iter_positions
+    wanted = [(t.name, t.at) for t in targets] + [(t.name + " UP", t.above) for t in targets]
+    got = []
+    for p in iter_positions(Document(text.encode("ascii"), f"{name}.LS")):
+        v = p.groups[1].values
+        got.append((p.comment, tuple(v[k].value for k in ("X", "Y", "Z", "W", "P", "R"))))
+    check_read_back(f"{name}.LS", wanted, got)
 
 
 def _number(name: str, kind: str, option: str) -> int:

@@ -29,7 +29,7 @@ from __future__ import annotations
 import re
 
 from ...errors import UcsioError
-from ..common.measure import MeasureProgram, header
+from ..common.measure import MeasureProgram, check_read_back, header
 from .program import RCONF, _comment, _date, _row
 
 _NAME = re.compile(r"\s*U([FT])\s*([0-9]{1,3})\s*")
@@ -43,6 +43,8 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
         raise UcsioError("a Yaskawa job's positions are those of a tool of TOOL.CND (tool 0 is "
                          "one too, not the flange): give --tool TOOL.CND:UTk, not --tcp")
     uf, ut = _number(frame.name, "F", "--frame"), _number(tool.name, "T", "--tool")
+    if not 0.1 <= settings.speed <= 9999.9:
+        raise UcsioError(f"--speed {settings.speed:g}: MOVL's V is 0.1...9999.9 mm/s")
     n = len(targets)
     rows = [f"C{k:05d}={_row((*t.at.t, *t.at.wpr))}" for k, t in enumerate(targets)]
     rows += [f"C{n + k:05d}={_row((*t.above.t, *t.above.wpr))}" for k, t in enumerate(targets)]
@@ -57,10 +59,24 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
              f"///TOOL {ut}", f"///USER {uf}", "///POSTYPE USER", "///RECTAN",
              f"///RCONF {RCONF}", *rows, "//INST", f"///DATE {_date()}", "///ATTR SC,RW",
              f"///FRAME USER {uf}", f"///GROUP1 RB{group}", *inst, "END"]
-    return MeasureProgram(text="\r\n".join(lines) + "\r\n", name=settings.name,
+    text = "\r\n".join(lines) + "\r\n"
+    _read_back(text, settings.name, targets)
+    return MeasureProgram(text=text, name=settings.name,
                           vendor="yaskawa", frame=frame.name, tool=tool.name,
                           points=[t.name for t in targets],
                           positions=[f"C{k:05d}" for k in range(n)])
+
+
+def _read_back(text: str, name: str, targets) -> None:
+    """The positions as ucsio's job reader reads them: the ones meant."""
+    from ...parsing.document import Document
+    from .job import positions
+    n = len(targets)
+    wanted = [(f"C{k:05d}", t.at) for k, t in enumerate(targets)]
+    wanted += [(f"C{n + k:05d}", t.above) for k, t in enumerate(targets)]
+    got = [(p.name, p.xyzabc()) for p in positions(Document(text.encode("ascii"),
+                                                             f"{name}.JBI"))]
+    check_read_back(f"{name}.JBI", wanted, got)
 
 
 def _number(name: str, kind: str, option: str) -> int:
