@@ -326,3 +326,29 @@ def test_a_program_that_reads_back_otherwise_is_not_returned():
                 [("A", (10.0, 20.0, 30.0, 170.01, 5.0, -40.0))], []):
         with pytest.raises(UcsioError, match="internal error"):
             check_read_back("M.LS", [("A", pose)], got)
+
+
+def test_json_and_the_python_api(cell, capsys):
+    """--json validates against its schema; ucsio.api.measurement_program
+    gives the same document and writes where asked, never over a file."""
+    import json
+
+    from test_schemas import validate
+    from ucsio import api
+    code, out, err = cli(capsys, "program", "--measure", cell / "plan.csv",
+                         YASKAWA / "UFRAME.CND", "--frame", "UF2", "--tool",
+                         f"{YASKAWA / 'TOOL.CND'}:UT3", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    validate("measurement-program", d)
+    m = d["measurement_program"]
+    assert m["file"] is None and m["points"] == list(POINTS)
+    assert m["positions"] == [f"C{k:05d}" for k in range(len(POINTS))]
+    made = api.measurement_program(cell / "plan.csv", cell / "sysframe.va", "UF1", tool="UT1",
+                                   orientation=(175.0, 5.0, 0.0), output=cell / "API.LS")
+    validate("measurement-program", made.as_dict())
+    assert made.measurement_program.positions[0] == "P[1]"
+    assert (cell / "API.LS").read_bytes().decode() == made.text
+    with pytest.raises(Exception, match="never written over"):
+        api.measurement_program(cell / "plan.csv", cell / "sysframe.va", "UF1", tool="UT1",
+                                output=cell / "API.LS")

@@ -114,21 +114,23 @@ def _rotations(planned, user, held, orientation, writer):
     if orientation is None:
         one = Pose.from_wpr(0, 0, 0, *DOWN)
     else:
-        from .patch import parse_values
-        angles = writer.angles
-        values = parse_values(orientation, 3, "--orientation") \
-            if isinstance(orientation, str) else list(orientation)
-        abc = dict(zip(angles.keys, values))
+        abc = dict(zip(writer.angles.keys, _three(orientation, "--orientation")))
         one = Pose.from_abc(0, 0, 0, abc["a"], abc["b"], abc["c"])
     return [one.matrix] * len(planned.names)
+
+
+def _three(value, option: str) -> list[float]:
+    """Three finite numbers: "A,B,C" from the command line, a sequence from
+    Python."""
+    from .patch import parse_values
+    text = value if isinstance(value, str) else ",".join(str(float(v)) for v in value)
+    return parse_values(text, 3, option)
 
 
 def _direction(approach_dir):
     if approach_dir is None:
         return (0.0, 0.0, 1.0)
-    from .patch import parse_values
-    d = parse_values(approach_dir, 3, "--approach-dir") \
-        if isinstance(approach_dir, str) else list(approach_dir)
+    d = _three(approach_dir, "--approach-dir")
     norm = sum(v * v for v in d) ** 0.5
     if not norm > 1e-9:
         raise UcsioError("--approach-dir: a direction is not zero")

@@ -195,8 +195,6 @@ def run_measure(args) -> int:
         if getattr(args, option) is not None:
             raise UsageError(f"ucsio program: --{option} does not go with --measure (the "
                              "controller's vendor writes the program, in its --frame)")
-    if args.json:
-        raise UsageError("ucsio program: --json does not go with --measure yet")
     result = measure.make(args.measure, args.solution, args.frame, tool=args.tool,
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
                           orientation=args.orientation, speed=args.speed, dwell=args.dwell,
@@ -205,6 +203,9 @@ def run_measure(args) -> int:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.output and args.output != "-":
         measure.save(result, args.output)
+    if args.json:
+        emit_json({"measurement_program": result.as_dict()})
+        return 0
     if not args.output or args.output == "-":
         sys.stdout.flush()
         sys.stdout.buffer.write(result.data)
