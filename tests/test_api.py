@@ -257,11 +257,31 @@ def test_every_option_is_a_keyword_of_the_command_s_function_and_the_api(command
     module, work, api_name = COMMAND_FUNCTIONS[command]
     parser = build_parser(command)
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    dests = {a.dest for a in sub.choices[command]._actions} - CLI_ONLY
+    dests = {a.dest for a in sub.choices[command]._actions} - CLI_ONLY - \
+        set(measure_options(sub.choices[command]))
     params = set(inspect.signature(getattr(importlib.import_module(module), work)).parameters)
     api_params = set(inspect.signature(getattr(api, api_name)).parameters)
     assert dests <= params, dests - params
     assert params - {"progress"} <= api_params | {"measurement"}, params - api_params
+
+
+def measure_options(parser) -> list[str]:
+    """The options of `program --measure` (their own group): another code
+    path, commands.measure.make and api.measurement_program."""
+    return [a.dest for g in parser._action_groups if g.title.startswith("the measurement program")
+            for a in g._group_actions]
+
+
+def test_every_measure_option_is_a_keyword_of_measure_and_the_api():
+    import inspect
+    from ucsio.cli import build_parser
+    from ucsio.commands import measure
+    parser = build_parser("program")
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    dests = set(measure_options(sub.choices["program"])) - {"measure"}   # the plan
+    params = set(inspect.signature(measure.make).parameters)
+    assert dests and dests <= params, dests - params
+    assert params <= set(inspect.signature(api.measurement_program).parameters)
 
 
 def test_no_command_imports_the_api():

@@ -25,7 +25,8 @@ from ucsio.output import SCHEMA_VERSION
 
 SCHEMAS = ROOT / "docs" / "schema"
 NAMES = ("frames", "check", "finding", "solve", "solution", "diff-frame", "diff-files",
-         "diff-backups", "patch", "program", "batch", "plan", "demo", "error")
+         "diff-backups", "patch", "program", "measurement-program", "batch", "plan", "demo",
+         "error")
 
 
 def schema(name: str) -> dict:

@@ -40,8 +40,8 @@ from .output import _clean, versioned
 from .parsing.controller import load as _load
 from .parsing.model import ControllerFile
 from .results import (BackupsDiff, BatchOutput, CheckResult, DemoResult, DiffResult, FilesDiff,
-                      FramesResult, PatchOutput, PlanResult, ProgramOutput, Result, SolveResult,
-                      TaughtPoints)
+                      FramesResult, MeasurementProgramOutput, PatchOutput, PlanResult,
+                      ProgramOutput, Result, SolveResult, TaughtPoints)
 from .review.result import PatchResult
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -355,6 +355,28 @@ def program(solution: Any, frame: str, *, group: int | None = None, pr: int | No
     return _document(ProgramOutput, command.document(made))
 
 
+def measurement_program(plan: PathLike, controller: PathLike, frame: str, *,
+                        tool: str | None = None, tcp: TcpLike | None = None,
+                        approach: float = 100.0, approach_dir: Sequence[float] | None = None,
+                        orientation: Sequence[float] | None = None, speed: float = 100.0,
+                        dwell: float | None = None,
+                        output: PathLike | None = None) -> MeasurementProgramOutput:
+    """``ucsio program --measure --json``: the measurement program that moves
+    the reflector (``tool``, a tool of ``controller`` or "FILE:NAME"; or
+    ``tcp`` on the flange) to each point of ``plan`` in ``controller``'s
+    ``frame``, in the controller's language (FANUC .LS, Yaskawa .JBI), read
+    back before it is returned; with ``output`` also written there, which
+    must not exist."""
+    from .commands import measure
+    made = measure.make(os.fspath(plan), os.fspath(controller), frame, tool=tool, tcp=tcp,
+                        approach=approach, approach_dir=approach_dir, orientation=orientation,
+                        speed=speed, dwell=dwell,
+                        output=None if output is None else os.fspath(output))
+    if output is not None:
+        measure.save(made, os.fspath(output))
+    return _document(MeasurementProgramOutput, {"measurement_program": made.as_dict()})
+
+
 def batch(manifest: PathLike, *, uncertainty: int = 0,
           sigma_laser: float = defaults.SIGMA_LASER, sigma_robot: float = defaults.SIGMA_ROBOT,
           seed: int = 0, patch_dir: PathLike | None = None, csv: PathLike | None = None,
@@ -423,5 +445,5 @@ def demo(out: PathLike | None = None, tolerance: float | None = None) -> DemoRes
 
 __all__ = ["load", "frame", "frames", "check", "solve", "save_solution", "read_solution",
            "as_pose", "diff_frame", "taught_points", "diff_files", "diff_backups", "patch",
-           "program",
+           "program", "measurement_program",
            "save", "batch", "plan", "textconv", "demo", "PatchResult"]

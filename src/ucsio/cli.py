@@ -56,7 +56,8 @@ COMMANDS = {
     "solve": "fit the measured UCS to laser/robot point pairs (Horn's method)",
     "diff": "simulated vs measured frame, or every frame of two files or two backups",
     "patch": "write a frame back into a controller file",
-    "program": "a program that sets a measured frame (a FANUC TP program, a Yaskawa job)",
+    "program": "a program that sets a measured frame (a FANUC TP program, a Yaskawa job), "
+               "or with --measure the measurement program",
     "batch": "solve and diff many datasets from a TOML manifest",
     "plan": "plan a measurement: the predicted error where the robot works, what to change",
     "demo": "the whole job on shipped example cells",

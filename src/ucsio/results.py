@@ -656,6 +656,33 @@ class ProgramOutput(Result):
         return self.program.text
 
 
+class MeasurementProgramInfo(Result):
+    """A measurement program: its ``text`` (CRLF), ``name``, ``vendor``, the
+    ``frame`` and ``tool`` it moves in, the plan's ``points`` in the
+    program's order and the ``positions`` that reach them (FANUC ``P[1]``,
+    Yaskawa ``C00000``), ``warnings``, and the ``file`` written (None on
+    standard output)."""
+    file: str | None
+    name: str
+    vendor: str
+    frame: str
+    tool: str
+    points: list[str]
+    positions: list[str]
+    warnings: list[str]
+    text: str
+
+
+class MeasurementProgramOutput(Result):
+    """``ucsio program --measure --json``: ``measurement_program``."""
+    schema_version: int
+    measurement_program: MeasurementProgramInfo
+
+    @property
+    def text(self) -> str:
+        return self.measurement_program.text
+
+
 # ------------------------------------------------------------------ batch
 
 class BatchDelta(Delta):

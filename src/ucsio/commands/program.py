@@ -38,7 +38,14 @@ measure again). Exit 2, nothing written: a bad solution, a UTk without a solved
 TCP (a Yaskawa UTk: no tool program yet), no register or P variable, one in
 use, a comment the pendant cannot hold (16 printable ASCII characters, no
 [ ] : ; quotes), an option the vendor's program does not take, a vendor
-without a program writer."""
+without a program writer.
+
+--measure PLAN.csv CONTROLLER --frame NAME (--tool NAME | --tcp X,Y,Z) -o
+OUT writes the measurement program instead: the reflector moved to each
+point of the plan in the controller's frame NAME, approach and retract
+--approach MM along --approach-dir (the frame's +Z), linear moves at
+--speed MM/S, a stop (or --dwell S) at each point (commands.measure).
+An existing -o is never replaced."""
 from __future__ import annotations
 
 import sys
@@ -67,6 +74,27 @@ def add_arguments(p) -> None:
     p.add_argument("--vendor", metavar="NAME", default=None,
                    help="whose program: fanuc, yaskawa (default: by -o's suffix, .LS FANUC, "
                         ".JBI Yaskawa; FANUC where it says neither)")
+    m = p.add_argument_group("the measurement program (--measure PLAN.csv CONTROLLER)")
+    m.add_argument("--measure", metavar="PLAN.csv",
+                   help="write the measurement program of this plan: SOLUTION.json's place "
+                        "takes the CONTROLLER file whose --frame and --tool it moves in")
+    m.add_argument("--tool", metavar="NAME|FILE:NAME",
+                   help="the reflector's tool: one of CONTROLLER's, or of FILE (Yaskawa's "
+                        "TOOL.CND:UT1)")
+    m.add_argument("--tcp", metavar="X,Y,Z",
+                   help="the reflector on the flange (FANUC: the faceplate's positions, UT 0)")
+    m.add_argument("--approach", type=float, default=100.0, metavar="MM",
+                   help="approach and retract distance (default 100)")
+    m.add_argument("--approach-dir", metavar="X,Y,Z",
+                   help="approach direction in the frame (default 0,0,1: the frame's +Z)")
+    m.add_argument("--orientation", metavar="A,B,C",
+                   help="the tool's orientation in the frame, in the vendor's angles "
+                        "(default: the TCP's z down the frame's -Z); the plan's robot_* "
+                        "columns give each point's own")
+    m.add_argument("--speed", type=float, default=100.0, metavar="MM/S",
+                   help="linear speed (default 100)")
+    m.add_argument("--dwell", type=float, default=None, metavar="S",
+                   help="wait S seconds at each point (default: a stop)")
     p.add_argument("-o", "--output", metavar="OUT.LS|OUT.JBI",
                    help="write the program here (default: standard output)")
 
@@ -134,6 +162,11 @@ def run(args) -> int:
     if args.output == "-" and args.json:
         raise UsageError("ucsio program: -o - puts the program on stdout; it does not go "
                          "with --json")
+    if args.measure is not None:
+        return run_measure(args)
+    for option in ("tool", "tcp", "approach_dir", "orientation", "dwell"):
+        if getattr(args, option) is not None:
+            raise UsageError(f"ucsio program: --{option.replace('_', '-')} goes with --measure")
     result = make(args.solution, args.frame, group=args.group, pr=args.pr, posreg=args.posreg,
                   comment=args.comment, wpr=args.wpr, p=args.p, var=args.var,
                   vendor=args.vendor, output=args.output)
@@ -143,6 +176,35 @@ def run(args) -> int:
         save(result, args.output)
     if args.json:
         emit_json(document(result))
+        return 0
+    if not args.output or args.output == "-":
+        sys.stdout.flush()
+        sys.stdout.buffer.write(result.data)
+        sys.stdout.buffer.flush()
+        return 0
+    print(result.summary(), file=sys.stderr)
+    return 0
+
+
+def run_measure(args) -> int:
+    """``program --measure``: the measurement program, written only where no
+    file is."""
+    from ..errors import UsageError
+    from . import measure
+    for option in ("group", "pr", "posreg", "comment", "wpr", "p", "var", "vendor"):
+        if getattr(args, option) is not None:
+            raise UsageError(f"ucsio program: --{option} does not go with --measure (the "
+                             "controller's vendor writes the program, in its --frame)")
+    result = measure.make(args.measure, args.solution, args.frame, tool=args.tool,
+                          tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
+                          orientation=args.orientation, speed=args.speed, dwell=args.dwell,
+                          output=args.output)
+    for w in result.warnings:
+        print(f"ucsio: warning: {w}", file=sys.stderr)
+    if args.output and args.output != "-":
+        measure.save(result, args.output)
+    if args.json:
+        emit_json({"measurement_program": result.as_dict()})
         return 0
     if not args.output or args.output == "-":
         sys.stdout.flush()

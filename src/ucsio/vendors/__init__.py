@@ -112,7 +112,7 @@ class Defaults:
 
     declaration_end = assignments = check_patchable = check_siblings = check_readback = None
     in_place_refusal = review_copy_warning = program_writer = None
-    frame_program = None
+    frame_program = measurement_program = None
     program_options: tuple[str, ...] = ()
 
     taught_points = None

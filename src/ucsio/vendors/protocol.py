@@ -90,6 +90,10 @@ class Vendor(Protocol):
     # suffixes are the registry's ``Entry.programs``.
     frame_program: Callable[..., Any] | None
     program_options: tuple[str, ...]    # the options of `ucsio program` it takes
+    # ``ucsio program --measure``: (frame, tool or None (--tcp: the flange), targets,
+    # settings) -> vendors.common.measure.MeasureProgram; None: "X has no
+    # measurement program writer yet"
+    measurement_program: Callable[..., Any] | None
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     # (cf, frame, cache) -> vendors.common.taught.Found: the points taught in a

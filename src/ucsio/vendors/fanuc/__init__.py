@@ -109,6 +109,11 @@ class Fanuc(Defaults):
         from .program import from_solution
         return from_solution(pose, frame, **options)
 
+    # ``ucsio program --measure``: a TP program (.LS) to the planned points
+    def measurement_program(self, frame, tool, targets, settings):
+        from .measure import measurement_program
+        return measurement_program(frame, tool, targets, settings)
+
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):
         from .taught import find
