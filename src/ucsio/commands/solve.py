@@ -89,7 +89,7 @@ def add_source_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--robot", metavar="FILE", default=None,
                    help="flange poses: SPEC CSV (robot_* columns), a KUKA program .dat "
                         "(E6POS/POS/FRAME with FDAT), an ABB module (robtargets), a FANUC TP "
-                        "program .ls (/POS) or posreg.va")
+                        "program .ls (/POS) or posreg.va, a Yaskawa job .JBI (//POS)")
     g.add_argument("--config", metavar="FILE", default=None, action="append",
                    help="KUKA $config.dat for the positions' TOOL_NO/BASE_NO; ABB: a module "
                         "declaring --robot-tool/--robot-wobj; FANUC: sysframe.va for UF/UT; "
