@@ -170,19 +170,20 @@ def run(args) -> int:
     result = make(args.solution, args.frame, group=args.group, pr=args.pr, posreg=args.posreg,
                   comment=args.comment, wpr=args.wpr, p=args.p, var=args.var,
                   vendor=args.vendor, output=args.output)
-    return deliver(args, result, save, document(result))
+    return deliver(args, result, save, document)
 
 
-def deliver(args, result, save, doc: dict) -> int:
+def deliver(args, result, save, document) -> int:
     """What ``program`` does with a program once made, whichever it is: its
-    warnings, the file (``save``, atomic), then ``--json``'s ``doc``, the
-    program itself on standard output, or what was written."""
+    warnings, the file (``save``, atomic), then ``--json``'s
+    ``document(result)`` (made after the save: it names the file written),
+    the program itself on standard output, or what was written."""
     for w in result.warnings:
         print(f"ucsio: warning: {w}", file=sys.stderr)
     if args.output and args.output != "-":
         save(result, args.output)
     if args.json:
-        emit_json(doc)
+        emit_json(document(result))
         return 0
     if not args.output or args.output == "-":
         sys.stdout.flush()
@@ -206,4 +207,5 @@ def run_measure(args) -> int:
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
                           orientation=args.orientation, speed=args.speed, dwell=args.dwell,
                           output=args.output)
-    return deliver(args, result, measure.save, {"measurement_program": result.as_dict()})
+    return deliver(args, result, measure.save,
+                   lambda made: {"measurement_program": made.as_dict()})
