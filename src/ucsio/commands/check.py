@@ -27,8 +27,8 @@ from ..output import emit_json
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", metavar="FILE",
-                   help="RAPID module, KRL .dat file, FANUC .va/.ls/.dg file, backup folder or "
-                        ".zip archive")
+                   help="RAPID module, KRL .dat file, FANUC .va/.ls/.dg file, Yaskawa "
+                        ".CND/.JBI/.DAT file, backup folder or .zip archive")
     p.add_argument("--ignore", action="append", default=[], metavar="CODE,...",
                    help="silence these lint codes (comma-separated, repeatable)")
     from ..findings import FORMATS

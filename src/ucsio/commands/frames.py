@@ -32,11 +32,11 @@ from ..output import emit_json, fmt, table
 
 def add_arguments(p) -> None:
     p.add_argument("files", nargs="+", metavar="FILE",
-                   help="RAPID module, KRL .dat file, FANUC .va/.ls file, backup folder or "
-                        ".zip archive")
+                   help="RAPID module, KRL .dat file, FANUC .va/.ls file, Yaskawa "
+                        ".CND/.JBI/.DAT file, backup folder or .zip archive")
     p.add_argument("--all", action="store_true",
-                   help="also list unset frames (KUKA and FANUC entries all 0 and without a "
-                        "name)")
+                   help="also list unset frames (KUKA, FANUC and Yaskawa tool entries all 0 "
+                        "and without a name)")
     p.add_argument("--tree", action="store_true",
                    help="print the hierarchy: world, robots, flanges, units and each frame "
                         "under what it is relative to")
