@@ -358,7 +358,8 @@ def program(solution: Any, frame: str, *, group: int | None = None, pr: int | No
 def measurement_program(plan: PathLike, controller: PathLike, frame: str, *,
                         tool: str | None = None, tcp: TcpLike | None = None,
                         approach: float = 100.0, approach_dir: Sequence[float] | None = None,
-                        orientation: Sequence[float] | None = None, speed: float = 100.0,
+                        orientation: Sequence[float] | None = None,
+                        spread: float | None = None, speed: float = 100.0,
                         dwell: float | None = None,
                         output: PathLike | None = None) -> MeasurementProgramOutput:
     """``ucsio program --measure --json``: the measurement program that moves
@@ -366,11 +367,12 @@ def measurement_program(plan: PathLike, controller: PathLike, frame: str, *,
     ``tcp`` on the flange) to each point of ``plan`` in ``controller``'s
     ``frame``, in the controller's language (FANUC .LS, Yaskawa .JBI), read
     back before it is returned; with ``output`` also written there, which
-    must not exist."""
+    must not exist. ``spread`` (deg) turns the tool point by point for a
+    TCP solved with the frame (``plan(tcp="solve")`` says how much)."""
     from .commands import measure
     made = measure.make(os.fspath(plan), os.fspath(controller), frame, tool=tool, tcp=tcp,
                         approach=approach, approach_dir=approach_dir, orientation=orientation,
-                        speed=speed, dwell=dwell,
+                        spread=spread, speed=speed, dwell=dwell,
                         output=None if output is None else os.fspath(output))
     if output is not None:
         measure.save(made, os.fspath(output))
@@ -406,7 +408,8 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
          threshold: float = defaults.THRESHOLD, reach: float = defaults.REACH,
          sigma_laser: float | None = None, sigma_robot: float | None = None,
          history: PathLike | None = None, min_points: int = defaults.MIN_POINTS,
-         margin: float = defaults.MARGIN, laser_units: str = "mm") -> PlanResult:
+         margin: float = defaults.MARGIN, laser_units: str = "mm",
+         spread: float | None = None) -> PlanResult:
     """``ucsio plan --json``: from the planned points alone (``plan``: point,
     laser_x/y/z in the UCS, mm; robot_* or ``robot`` for the planned flange
     poses), the fitted frame's predicted 95 % error (mm) at the working
@@ -415,7 +418,9 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
     none: the generic point ``reach`` mm from the centroid), the ``worst``,
     the ``verdict`` against ``threshold`` and ``suggest`` (add from
     ``candidates``, else locations within ``margin`` mm of a planned point;
-    drop). ``tcp="solve"`` plans the TCP with the frame. The noise: the
+    drop). ``tcp="solve"`` plans the TCP with the frame (with no flange
+    poses planned: at the ``spread`` of ``measurement_program``, default
+    the least that holds the threshold). The noise: the
     stated ``sigma_laser``/``sigma_robot``, the fleet's own from ``history``
     (a batch --json result or a folder of solutions), else an uncalibrated
     robot's (``defaults.PLAN_SIGMA_ROBOT``)."""
@@ -425,7 +430,7 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
         robot_wobj=robot_wobj, tcp=tcp, tool=tool, at=at, at_taught=at_taught, frame=frame,
         candidates=candidates, threshold=threshold, reach=reach, min_points=min_points,
         sigma_laser=sigma_laser, sigma_robot=sigma_robot, history=history, margin=margin,
-        laser_units=laser_units)
+        laser_units=laser_units, spread=spread)
     return _document(PlanResult, doc)
 
 

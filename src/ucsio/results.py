@@ -795,7 +795,8 @@ class PlanResult(Result):
     (mm), the ``worst``, the ``verdict`` (pass or fail against
     ``threshold``), ``reason`` and ``advice``, and what to change
     (``suggest``); with ``--tcp solve`` ``tcp_at_95`` (mm) and
-    ``orientation_span`` (deg)."""
+    ``orientation_span`` (deg), and where the plan gives no flange poses
+    the ``spread`` (deg) of ``program --measure --spread`` it takes."""
     schema_version: int
     planned: int
     sigma: float
@@ -809,6 +810,7 @@ class PlanResult(Result):
     suggest: Suggest
     tcp_at_95: float | None
     orientation_span: float | None
+    spread: float | None
     warnings: list[str]
     source: str
     at: str | None

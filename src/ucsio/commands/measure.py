@@ -18,8 +18,8 @@ DOWN = (180.0, 0.0, 0.0)    # W, P, R: the TCP's z along the frame's -Z
 
 
 def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float = 100.0,
-         approach_dir=None, orientation=None, speed: float = 100.0, dwell=None,
-         output=None):
+         approach_dir=None, orientation=None, spread=None, speed: float = 100.0,
+         dwell=None, output=None):
     """The program (``vendors.common.measure.MeasureProgram``; nothing
     written), in the language of CONTROLLER's vendor."""
     from .. import vendors
@@ -39,6 +39,7 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
     held, offset = _tool(cf, tool, tcp)
     planned, warnings = _plan(plan)
     rotations = _rotations(planned, user, held, orientation, writer)
+    rotations = _spread(rotations, spread, planned)
     direction = _direction(approach_dir)
     targets = [_target(n, line, xyz, r, offset, approach, direction)
                for n, line, xyz, r in zip(planned.names, planned.lines, planned.laser,
@@ -117,6 +118,26 @@ def _rotations(planned, user, held, orientation, writer):
         abc = dict(zip(writer.angles.keys, _three(orientation, "--orientation")))
         one = Pose.from_abc(0, 0, 0, abc["a"], abc["b"], abc["c"])
     return [one.matrix] * len(planned.names)
+
+
+def _spread(rotations, spread, planned):
+    """Each point's rotation turned by ``method.spread``'s pattern (the one
+    ``plan --tcp solve`` predicts): about the written tool's own axes, so
+    the reflector stays on the point and the flange moves round it."""
+    if spread is None:
+        return rotations
+    import math
+
+    import numpy as np
+
+    from ..method.spread import MOST, tilts
+    if not (math.isfinite(spread) and 0 < spread <= MOST):
+        raise UcsioError(f"--spread {spread:g}: a turn of more than 0 and at most {MOST:g} deg")
+    if planned.flange is not None:
+        raise UcsioError("--spread: the plan gives each point's orientation (its robot_* "
+                         "columns); the spread is theirs", file=planned.path)
+    return [np.asarray(r, dtype=float) @ t for r, t in zip(rotations, tilts(len(rotations),
+                                                                              spread))]
 
 
 def _three(value, option: str) -> list[float]:

@@ -46,11 +46,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                         "posreg.va: the registers' user frame, UFk")
     g.add_argument("--map", metavar="FILE", default=None,
                    help="CSV of plan,robot name pairs for points whose names differ")
+    g.add_argument("--spread", type=float, default=None, metavar="DEG",
+                   help="without planned poses: plan the orientations program --measure "
+                        "--spread DEG writes (the tool turned by DEG/2 about its x and y "
+                        "axes in turn); default the least of 5, 10, ... 90 deg that holds the "
+                        "threshold")
     src = p.add_mutually_exclusive_group()
     src.add_argument("--tcp", metavar="X,Y,Z|solve", default=None,
                      help="the reflector on the flange: given (its value does not change the "
                           "prediction) or 'solve' (planned with the frame: needs the flange "
-                          "poses)")
+                          "poses, or plans program --measure's --spread)")
     src.add_argument("--tool", metavar="FILE:NAME", default=None,
                      help="the TCP from a robot-held tool in a controller file")
     at = p.add_mutually_exclusive_group()
@@ -187,7 +192,7 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
                      reach: float = defaults.REACH, min_points: int = defaults.MIN_POINTS,
                      margin: float = defaults.MARGIN, laser_units: str = "mm",
                      sigma_laser: float | None = None, sigma_robot: float | None = None,
-                     history=None) -> dict:
+                     history=None, spread: float | None = None) -> dict:
     """The command's work, for ``run`` and ``ucsio.api.plan`` alike: --json's
     document. Each keyword is the option of that name; ``tcp`` may also be
     three numbers, ``at`` and ``candidates`` ``readers.points.Points``."""
@@ -212,6 +217,9 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
     warnings += more
     points, more = working_points(at, at_taught, frame)
     warnings += more
+    planned, spread = planned_spread(planned, joint, spread, at=points, threshold=threshold,
+                                     reach=reach, sigma_laser=sigma_laser,
+                                     sigma_robot=sigma_robot)
     if isinstance(candidates, (str, os.PathLike)):
         from ..readers.points import read_points
         candidates = read_points(candidates, "candidate file")
@@ -219,12 +227,42 @@ def plan_measurement(plan, *, robot=None, config=None, map=None, robot_tool: str
                          threshold=threshold, reach=reach, sigma_laser=sigma_laser,
                          sigma_robot=sigma_robot, min_points=min_points, margin=margin)
     result["noise"] = noise
+    if spread is not None:
+        result["spread"] = spread
     result["warnings"] = warnings + result["warnings"]
     result["source"] = os.fspath(plan)
     if points is not None:
         result["at"] = (f"{os.fspath(at_taught)}:{frame}" if at_taught is not None else
                         os.fspath(at) if isinstance(at, (str, os.PathLike)) else points.path)
     return result
+
+
+def planned_spread(planned, joint: bool, spread, **judge):
+    """(the plan, the spread it takes or None): with --tcp solve and no
+    planned flange poses, the orientations ``program --measure --spread``
+    writes stand in for them, at --spread or the least spread that holds the
+    threshold (``judge``: at, threshold, reach and the noise)."""
+    import math
+    from dataclasses import replace
+
+    from ..method import spread as pattern
+    from ..method.plan import least_spread
+
+    if spread is not None:
+        if not (math.isfinite(spread) and 0 < spread <= pattern.MOST):
+            raise UcsioError(f"--spread {spread:g}: a turn of more than 0 and at most "
+                             f"{pattern.MOST:g} deg")
+        if not joint:
+            raise UcsioError("--spread plans the orientations a TCP solved with the frame "
+                             "needs: it goes with --tcp solve")
+        if planned.flange is not None:
+            raise UcsioError("--spread: the plan gives the flange poses (robot_* columns or "
+                             "--robot); the spread is theirs", file=planned.path)
+    if not joint or planned.flange is not None:
+        return planned, None
+    if spread is None:
+        spread = least_spread(planned, **judge)
+    return replace(planned, flange=pattern.flanges(planned.laser, spread)), float(spread)
 
 
 def plan_noise(sigma_laser, sigma_robot, history):
@@ -306,6 +344,10 @@ def render(r: dict, args=None, stream=None) -> str:
     if "tcp_at_95" in r:
         lines.append(f"tcp: within {r['tcp_at_95']:.3f} mm (95 %); the flange orientations "
                      f"span {r['orientation_span']:.1f} deg")
+        if r.get("spread") is not None:
+            lines.append(f"spread: the orientations of program --measure --spread "
+                         f"{r['spread']:g} (the tool turned by {r['spread'] / 2:g} deg about "
+                         "its x and y axes in turn)")
     add, drop = r["suggest"]["add"], r["suggest"]["drop"]
     if add is not None:
         tail = ""

@@ -91,6 +91,9 @@ def add_arguments(p) -> None:
                    help="the tool's orientation in the frame, in the vendor's angles "
                         "(default: the TCP's z down the frame's -Z); the plan's robot_* "
                         "columns give each point's own")
+    m.add_argument("--spread", type=float, default=None, metavar="DEG",
+                   help="for a TCP solved with the frame: turn the tool by DEG/2 about its x "
+                        "and y axes in turn, point by point (plan --tcp solve says how much)")
     m.add_argument("--speed", type=float, default=100.0, metavar="MM/S",
                    help="linear speed (default 100)")
     m.add_argument("--dwell", type=float, default=None, metavar="S",
@@ -205,7 +208,7 @@ def run_measure(args) -> int:
                              "controller's vendor writes the program, in its --frame)")
     result = measure.make(args.measure, args.solution, args.frame, tool=args.tool,
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
-                          orientation=args.orientation, speed=args.speed, dwell=args.dwell,
-                          output=args.output)
+                          orientation=args.orientation, spread=args.spread,
+                          speed=args.speed, dwell=args.dwell, output=args.output)
     return deliver(args, result, measure.save,
                    lambda made: {"measurement_program": made.as_dict()})

@@ -338,3 +338,29 @@ def at_risk(worst: dict[str, Any], threshold: float, sigma: float, m: Model) -> 
             f"{worst['name']} is predicted within {worst['at_95']:.2f} mm (95 %), over the "
             f"{threshold:g} mm threshold (noise {sigma:.3f} mm per axis; the points spread "
             f"{spread[0]:.0f} x {spread[1]:.0f} x {spread[2]:.0f} mm)")
+
+
+def least_spread(planned: Planned, *, at, threshold: float, reach: float,
+                 sigma_laser: float, sigma_robot: float) -> float:
+    """For a TCP solved with the frame where the plan gives no flange poses:
+    the least spread of ``program --measure``'s pattern (``spread.STEPS``)
+    at which the TCP and the worst working point are both predicted within
+    the threshold; the largest tried where none is (the plan then fails,
+    saying why)."""
+    from dataclasses import replace
+
+    from . import spread
+
+    sigma = math.hypot(sigma_laser, sigma_robot)
+    for deg in spread.STEPS:
+        m = model(replace(planned, flange=spread.flanges(planned.laser, deg)), True)
+        K, ok = covariances(m.terms.sum(axis=0)[None], m.terms2.sum(axis=0)[None])
+        if not ok[0] or not prec.q95(K[:, 6:, 6:], sigma)[0] <= threshold:
+            continue
+        if at is not None:
+            worst = float(prec.at_points95(K[:, :6, :6], (at.xyz - m.c) @ m.R.T, sigma).max())
+        else:
+            worst = reach_point(m, K[0], reach, sigma)[1]
+        if worst <= threshold:
+            return float(deg)
+    return float(spread.STEPS[-1])
