@@ -241,10 +241,10 @@ def test_a_vendor_without_a_writer_says_so(cell, capsys, controller, frame, tool
 LOOPS = {   # vendor: (controller, frame, tool, -o, the frame's and tool's values, --config, names)
     "fanuc": ("{cell}/sysframe.va", "UF1", "UT1", "LOOP.LS", UF1, UT1, "{cell}/sysframe.va",
               "M{k}"),
-    # a job names no position: the plan's points are named as the job's
+    # the comment before each move names its position
     "yaskawa": (f"{YASKAWA}/UFRAME.CND", "UF2", f"{YASKAWA}/TOOL.CND:UT3", "LOOP.JBI",
                 (1450.0, 390.0, 610.0, 0.0, 0.0, 90.0), (0.48, -0.73, 162.25, 0, 0, 0),
-                (f"{YASKAWA}/TOOL.CND", f"{YASKAWA}/UFRAME.CND"), "C{k:05d}")}
+                (f"{YASKAWA}/TOOL.CND", f"{YASKAWA}/UFRAME.CND"), "M{k}")}
 
 
 @pytest.mark.parametrize("vendor", sorted(LOOPS))
@@ -318,6 +318,7 @@ def test_names_the_pendant_cannot_hold(cell, capsys):
                        "UF1", "--tool", f"{YASKAWA / 'TOOL.CND'}:UT3", "-o", out)
     assert code == 0, err
     assert b"\r\n'B?\r\n" in out.read_bytes() and b"from pl?n.csv" in out.read_bytes()
+    assert "point 'Bé'" in err and "it reads 'B?'" in err and "pairs it as C00001" in err
 
 
 @pytest.mark.parametrize("option, value", [

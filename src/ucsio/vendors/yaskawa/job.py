@@ -172,6 +172,39 @@ def positions(doc: Document, cf: ControllerFile | None = None) -> list[Position]
     return out
 
 
+_MOVE = regex.lazy(r"[ \t]*S?MOV[JLCS][ \t]+(?P<name>(?:BC|EC|BP|EX|C|P)[0-9]+)\b")
+_COMMENT = regex.lazy(r"[ \t]*'(?P<text>[^\r\n]*)\Z")
+
+
+def names_by_comment(doc: Document) -> dict[str, str]:
+    """The name each position is given by a comment line directly before a
+    move to it (``'M3`` then ``MOVL C00002 V=100.0``), as a pendant shows
+    the job: C00002 -> "M3". A job's positions carry no names of their own;
+    this is how ``program --measure`` names its points for ``solve`` to pair.
+    Where a position is commented with two names, or a name comments two
+    positions, neither is used (a taught job's "'APPROACH" names nothing)."""
+    names: dict[str, set[str]] = {}
+    before = None
+    section = None
+    for _, line in _lines(doc):
+        m = _ITEM.match(line)
+        if m is not None and len(m.group("slashes")) == 2:
+            section = m.group("key")
+            continue
+        if section != "INST":
+            continue
+        move = _MOVE.match(line)
+        if move is not None and before:
+            names.setdefault(move.group("name"), set()).add(before)
+        comment = _COMMENT.match(line)
+        before = comment.group("text").strip() if comment is not None else None
+    once = {k: next(iter(v)) for k, v in names.items() if len(v) == 1}
+    counts: dict[str, int] = {}
+    for text in once.values():
+        counts[text.casefold()] = counts.get(text.casefold(), 0) + 1
+    return {k: text for k, text in once.items() if counts[text.casefold()] == 1}
+
+
 def sniff_line(line: str) -> bool:
     return line.lstrip("\ufeff \t").rstrip(" \t") == "/JOB"
 

@@ -64,11 +64,15 @@ def read(vendor, path: str, configs, tool: str, wobj: str, load) -> RobotPoses:
     doc = cf.document
     frames = _Frames(configs or (), load, vendor.name, job_robot(doc))
     poses = []
+    named = job.names_by_comment(doc)
     for p in cf.extra["positions"]:
         if p.kind not in job.ROBOT_KINDS:
             continue                    # a base's or station's axes: not the robot's flange
         line, col = doc.line_col(p.at)
-        rp = RobotPose(p.name, p.point, line, col, None, aliases=(p.name,))
+        if p.name in named:             # its comment names it; C00002 and C2 still pair
+            rp = RobotPose(p.name, named[p.name], line, col, None, aliases=(p.name, p.point))
+        else:
+            rp = RobotPose(p.name, p.point, line, col, None, aliases=(p.name,))
         poses.append(rp)
         try:
             rp.flange = matrix(_flange(doc, p, frames))
