@@ -146,7 +146,50 @@ def test_demo_out_writes_inputs_and_a_replay_that_gives_the_same_results(tmp_pat
         assert (replay / "patched" / ctl).read_bytes() == demo_patched
         for m in made[1:]:                  # the patched copy, the program: byte for byte
             assert (replay / m).read_bytes() == demo_made[m], m
+        # step 0, the measurement program, into ../measure: the demo's, byte for byte
+        if cell.measure_file and (tmp_path / "out" / "measure" / cell.measure_file).exists():
+            again = tmp_path / "replay" / "measure" / cell.measure_file
+            assert again.read_bytes() == \
+                (tmp_path / "out" / "measure" / cell.measure_file).read_bytes()
         assert f"~ {cell.frame}" in res.stdout or "value changed" in res.stdout
+
+
+def test_demo_out_writes_each_cells_measurement_program(tmp_path):
+    """issue 28 point 4: OUT/measure holds each cell's measurement program
+    where its vendor has a writer (else the cell says why in ``skipped``):
+    read back through the robot reader and solved against the cell's laser
+    points, it gives the simulated frame (the program moves in it), every
+    point paired by its name."""
+    from pathlib import Path
+
+    from ucsio import api, vendors
+    r = run(tmp_path, "--out", "out", "--json")
+    doc = json.loads(r.stdout)
+    data = resources.files("ucsio.demo").joinpath("data")
+    written = 0
+    for cell, got in zip(CELLS, doc["cells"]):
+        m = got.get("measurement_program")
+        if vendors.get(cell.vendor).measurement_program is None:
+            assert m is None and any(s["step"] == "measure" and "no measurement program "
+                                     "writer" in s["why"] for s in got["skipped"])
+            continue
+        out = tmp_path / "out" / "measure" / cell.measure_file
+        assert m["written"] == str(Path("out") / "measure" / cell.measure_file) or \
+            Path(m["written"]).resolve() == out.resolve()
+        with resources.as_file(data) as root:
+            config = [str(Path(root) / (cell.config or cell.controller))]
+            if cell.config:
+                config.append(str(Path(root) / cell.controller))
+            tool = f"{config[0]}:{cell.tool}"
+            solved = api.solve(laser=Path(root) / cell.measurement, robot=out, config=config,
+                               tool=tool, no_exclusion=True).as_dict()
+            sim = load(Path(root) / cell.controller).frame(cell.frame).pose
+        assert solved["n_used"] == solved["n_points"] == len(m["points"])
+        f = solved["frame"]
+        assert abs(f["x"] - sim.t[0]) < 2e-3 and abs(f["y"] - sim.t[1]) < 2e-3 \
+            and abs(f["z"] - sim.t[2]) < 2e-3
+        written += 1
+    assert written >= 2                             # FANUC and Yaskawa at least
 
 
 def test_demo_third_cell_solves_the_tcp_and_patches_base_and_tool(tmp_path):

@@ -17,6 +17,7 @@ shipped files are never changed. Exit 1 when a cell fails its gate."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from .. import defaults, vendors
 from ..output import emit_json, fmt, paint, paint_diff, table
@@ -49,10 +50,12 @@ def run(args) -> int:
         for cell in every:
             program = (cell.get("program") or {}).get("written")
             patched = (cell.get("patch") or {}).get("written")
+            measure = (cell.get("measurement_program") or {}).get("written")
             print(f"wrote {cell['folder']}: inputs, "
                   + ("solution.json, " if "solve" in cell else "")
                   + (f"{patched}, " if patched else "")
                   + (f"{program}, " if program else "")
+                  + (f"{measure}, " if measure else "")
                   + "replay.sh (every step by hand)", file=sys.stderr)
     else:
         print("nothing written (ucsio demo --out DIR writes the inputs, the solution and the "
@@ -118,6 +121,7 @@ def print_cell(cell: dict) -> None:
     for w in cell.get("warnings") or ():
         print(f"warning: {w}")
     print()
+    print_measure(cell)
     print("1. solve (" + ("the TCP with the frame: linear start, Gauss-Newton; leave-one-out "
                           "outlier exclusion)" if solved
                           else "Horn's method, leave-one-out outlier exclusion)"))
@@ -164,6 +168,23 @@ def print_cell(cell: dict) -> None:
     print(indent(paint_diff(patch["diff"].rstrip("\n"))))
     for w in patch.get("warnings") or ():
         print(indent(f"warning: {w}"))
+
+
+def print_measure(cell: dict) -> None:
+    """Step 0: the measurement program generated from the cell's laser
+    points (before the data existed), or why there is none."""
+    m = cell.get("measurement_program")
+    why = next((s["why"] for s in cell.get("skipped") or () if s["step"] == "measure"), None)
+    if m is None and why is None:
+        return
+    if m is None:
+        print(f"0. measurement program: not run: {why}")
+    else:
+        spread = f", turned {m['spread']:g} deg apart for the TCP" if m.get("spread") else ""
+        print(f"0. measurement program: {m['file']} moves {m['tool']} to the "
+              f"{len(m['points'])} points of {Path(cell['measurement']).name} in "
+              f"{m['frame']}{spread} (ucsio program --measure; demo --out writes it)")
+    print()
 
 
 def print_program(program: dict | None, why: str | None) -> None:

@@ -183,6 +183,16 @@ def _program_name(output) -> str:
     return stem
 
 
+def files_of(result, path: str) -> list[str]:
+    """The names of the files a program is written as at ``path``: the one
+    file (a vendor whose program is a pair says so by ``result.files``)."""
+    files = getattr(result, "files", None)
+    if not files:
+        return [os.path.basename(path)]
+    stem = os.path.splitext(os.path.basename(path))[0]
+    return [stem + suffix for suffix, _ in files]
+
+
 def save(result, path: str) -> str:
     """Write the program; an existing file is never replaced."""
     from ..files import atomic_write

@@ -11,7 +11,9 @@ and the tool's x, y, z. The demo solves, diffs the simulated frame against the
 measured one, and previews the patch as a unified diff. ``out`` writes, per
 cell, the inputs (controller file, measurement), the solution and the patched
 copy (never the shipped files), with ``replay.sh``: the same steps as ucsio
-commands, to run by hand.
+commands, to run by hand; and into ``out/measure`` each cell's measurement
+program, as ``program --measure`` makes it from the cell's laser points
+(step 0: the program that would have moved the reflector).
 
 A step runs where the cell's vendor has the capability it needs (its reader
 of robot positions, of taught points, its program writer) and is otherwise
@@ -52,6 +54,10 @@ class Cell:
     points: bool = False         # diff with the positions the backup's programs teach in frame
     program_file: str | None = None  # the program that sets the frame, where the vendor has one
     comment: bool = False        # replay.sh: ucsio program keeps the frame's comment (FANUC)
+    # the measurement program ``program --measure`` writes from the cell's laser points (its
+    # file, which names the program), and the spread of orientations where the TCP is solved
+    measure_file: str | None = None
+    measure_spread: float | None = None
 
     @property
     def vendor(self) -> str:
@@ -62,29 +68,32 @@ class Cell:
 CELLS = (
     Cell("R01", "R01_kuka/$config.dat", "weld_fixture_A", "R01_kuka/base3_points.csv",
          "SMR_reflector",
-         "KUKA KR 210 at a welding fixture: BASE_DATA[3] as simulated vs measured"),
+         "KUKA KR 210 at a welding fixture: BASE_DATA[3] as simulated vs measured",
+         measure_file="MEAS_BASE3.src"),
     Cell("R02", "R02_abb/CellR02.mod", "wobjTable", "R02_abb/table_points.csv",
          "tReflector",
-         "ABB IRB 4600 at a press table: wobjTable's user frame as simulated vs measured"),
+         "ABB IRB 4600 at a press table: wobjTable's user frame as simulated vs measured",
+         measure_file="MEAS_TABLE.mod"),
     Cell("R03", "R03_kuka/$config.dat", "jig_B", "R03_kuka/jig_points.txt",
          "SMR_adapter",
          "KUKA KR 120 at a fixing jig, from a SpatialAnalyzer export and the measurement "
          "program's MEASURE.dat: BASE_DATA[1] and the never-measured reflector adapter's TCP",
-         robot="R03_kuka/MEASURE.dat"),
+         robot="R03_kuka/MEASURE.dat", measure_file="MEAS_JIG.src", measure_spread=30.0),
     Cell("R04", "R04_fanuc/SYSFRAME.VA", "UF1", "R04_fanuc/pallet_points.txt", "UT2",
          "FANUC palletising cell, from the tracker's point table and the measurement program "
          "MEASURE.LS: UF1 'PALLET' as simulated vs measured, set by a generated TP program",
          robot="R04_fanuc/MEASURE.LS", tcp_solve=False,
          extra=("R04_fanuc/POSREG.VA", "R04_fanuc/PALLET.LS"),
          program_input=("posreg", "R04_fanuc/POSREG.VA"),
-         points=True, program_file="SET_UF1.LS", comment=True),
+         points=True, program_file="SET_UF1.LS", comment=True, measure_file="MEAS_UF1.LS"),
     Cell("R05", "R05_yaskawa/UFRAME.CND", "UF2", "R05_yaskawa/fixture_points.txt", "UT3",
          "Yaskawa YRC1000 at an assembly fixture, from the tracker's point table and the "
          "measurement job MEASURE.JBI: UF2 'FIXTURE' as simulated vs measured, set by a "
          "generated SETUF job or by patching UFRAME.CND's BUSER",
          robot="R05_yaskawa/MEASURE.JBI", tcp_solve=False, config="R05_yaskawa/TOOL.CND",
          extra=("R05_yaskawa/PLACE.JBI", "R05_yaskawa/VAR.DAT"),
-         program_input=("var", "R05_yaskawa/VAR.DAT"), points=True, program_file="SETUF2.JBI"),
+         program_input=("var", "R05_yaskawa/VAR.DAT"), points=True, program_file="SETUF2.JBI",
+         measure_file="MEAS_UF2.JBI"),
 )
 
 
@@ -140,6 +149,8 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     if folder is not None:
         _mkdir(folder / "patched")
     prog = _program(cell, root, sim, sol, folder, skipped) if cell.program_file else None
+    measure = (_measure(cell, root, None if out is None else Path(out) / MEASURE_FOLDER,
+                        skipped) if cell.measure_file else None)
     if folder is not None:
         write_inputs(cell, root, folder, sol, label=sim.label, skipped=skipped)
         if sol.accepted:
@@ -147,6 +158,8 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     label = f"a/{cell.controller}"
     vendor = vendors.get(cell.vendor)
     extra = {} if prog is None else {"program": prog}
+    if measure is not None:
+        extra["measurement_program"] = measure
     if points is not None:
         extra["points"] = points
     return {**extra, **head,
@@ -252,6 +265,46 @@ def _program(cell: Cell, root: Path, sim, sol, folder: Path | None, skipped: lis
     return prog
 
 
+#: where ``demo --out`` writes the measurement programs: beside the cells' folders, not in
+#: them, for each cell's folder is its backup, and a program there teaches positions in the
+#: frame that ``diff --points`` would count among the backup's
+MEASURE_FOLDER = "measure"
+
+
+def _measure(cell: Cell, root: Path, folder: Path | None, skipped: list):
+    """The measurement program that moved the reflector, as ``program
+    --measure`` writes it from the cell's laser points (the plan it would
+    have been), where the cell's vendor has a writer: into ``folder`` where
+    one is given (the demo's own file: written anew each run), else only
+    made."""
+    vendor = vendors.get(cell.vendor)
+    if vendor.measurement_program is None:
+        skipped.append({"step": "measure", "why": vendors.missing(
+            cell.vendor, "measurement program writer") + f": {cell.measure_file} is not "
+            "generated"})
+        return None
+    from ..commands import measure
+    made = measure.make(root / cell.measurement, root / cell.controller, cell.frame,
+                        tool=_measure_tool(cell, root), spread=cell.measure_spread,
+                        output=cell.measure_file)
+    written = None
+    if folder is not None:
+        _mkdir(folder)
+        for name in measure.files_of(made, cell.measure_file):
+            (folder / name).unlink(missing_ok=True)     # this run's own: a rerun makes it anew
+        written = measure.save(made, str(folder / cell.measure_file))
+    info = made.as_dict()
+    return {"file": cell.measure_file, "name": info["name"], "frame": info["frame"],
+            "tool": info["tool"], "points": info["points"], "spread": cell.measure_spread,
+            "text": info["text"], "written": written}
+
+
+def _measure_tool(cell: Cell, root: Path) -> str:
+    """The reflector's tool as --tool names it: FILE:NAME where the tool is
+    in another file than the controller's."""
+    return f"{root / cell.config}:{cell.tool}" if cell.config else cell.tool
+
+
 def _with_tcp(cf, result, tool: str, tcp):
     """The frame's patch and the solved TCP's, as one patch of the file: the
     TCP goes into the frame-patched text, and the result replaces the
@@ -294,6 +347,7 @@ def replay_script(cell: Cell, label: str | None = None, skipped=()) -> str:
             f"# the TCP of {cell.tool} is solved with the frame.",
             "set -e",
             'cd "$(dirname "$0")"',
+            *_measure_lines(cell, skipped),
             "# 1. solve: the TCP with the frame (linear start, Gauss-Newton), leave-one-out exclusion",
             f"ucsio solve --laser {q(meas)} --robot {q(robot)} --config {q(ctl)} --tcp solve "
             "-o solution.json",
@@ -316,6 +370,7 @@ def replay_script(cell: Cell, label: str | None = None, skipped=()) -> str:
         f"# tool {cell.tool} in the controller file.",
         "set -e",
         'cd "$(dirname "$0")"',
+        *_measure_lines(cell, skipped),
         "# 1. solve: Horn's method, leave-one-out outlier exclusion",
         f"ucsio solve {q(meas)} --tool {q(ctl + ':' + cell.tool)} -o solution.json",
         "# 2. diff: the simulated frame against the measured one (exit 1 over tolerance)",
@@ -354,6 +409,7 @@ def _replay_with_tool(cell: Cell, label: str | None, skipped: dict[str, str]) ->
         f"# position taught with the reflector tool {cell.tool} of {cfg}).",
         "set -e",
         'cd "$(dirname "$0")"']
+    lines += _measure_lines(cell, [{"step": k, "why": v} for k, v in skipped.items()])
     if no_solve:
         lines += [f"# Not run yet: {no_solve}.",
                   "# Every step needs the solution: the commands as they will run, commented out."]
@@ -388,6 +444,29 @@ def _replay_with_tool(cell: Cell, label: str | None, skipped: dict[str, str]) ->
     lines += [step(f"{patch} -o {q('patched/' + ctl)}"),
               step(f"ucsio diff {q(ctl)} {q('patched/' + ctl)} || true"), ""]
     return "\n".join(lines)
+
+
+def _measure_lines(cell: Cell, skipped=()) -> list[str]:
+    """replay.sh's step 0: the measurement program, before the data existed
+    (a comment saying why where the cell's vendor has no writer yet)."""
+    if not cell.measure_file:
+        return []
+    q = _sh
+    ctl, meas = Path(cell.controller).name, Path(cell.measurement).name
+    tool = f"{Path(cell.config).name}:{cell.tool}" if cell.config else cell.tool
+    spread = f" --spread {cell.measure_spread:g}" if cell.measure_spread else ""
+    command = (f"ucsio program --measure {q(meas)} {q(ctl)} --frame {q(cell.frame)} "
+               f"--tool {q(tool)}{spread} -o ../{MEASURE_FOLDER}/{q(cell.measure_file)}")
+    stem = Path(cell.measure_file).stem
+    lines = ["# 0. before the measurement: the program that moves the reflector to each point,",
+             f"#    in ../{MEASURE_FOLDER} (not in this backup, where diff --points would count "
+             "its positions;",
+             "#    ucsio never writes over a file: the demo's copy is removed first)"]
+    why = next((x["why"] for x in skipped if x["step"] == "measure"), None)
+    if why is not None:
+        return lines + [f"# not run yet ({why}):", f"#   {command}"]
+    return lines + [f"mkdir -p ../{MEASURE_FOLDER}", f"rm -f ../{MEASURE_FOLDER}/{q(stem)}.*",
+                    command]
 
 
 def _sh(word: str) -> str:
