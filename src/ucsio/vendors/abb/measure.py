@@ -92,15 +92,11 @@ def _confirm() -> list[str]:
 
 
 def _check_wobj(frame) -> None:
-    """A work object's user frame: its robtargets are flange poses in world
-    only where the work object is fixed there."""
-    if frame.type != "wobjdata" or frame.info.get("component") == "oframe":
+    """A work object's user frame (the generic part has checked that it is
+    fixed in world): a stationary tool hangs from world too."""
+    if frame.type != "wobjdata":
         raise UcsioError(f"--frame {frame.name}: a RAPID measurement program moves in a work "
-                         "object: name its wobjdata (the user frame solve measures)",
-                         file=frame.file, line=frame.line)
-    if frame.info.get("robhold") or frame.info.get("ufprog") is False:
-        raise UcsioError(f"--frame {frame.name}: a work object held by the robot or moved by "
-                         "a unit (robhold TRUE or ufprog FALSE): not fixed in world",
+                         f"object, not a {frame.type}: name its wobjdata",
                          file=frame.file, line=frame.line)
 
 
