@@ -78,7 +78,7 @@ def test_the_module_reads_back_as_the_plan(cell, capsys):
     assert "robconf [0,0,0,0] is a guess" in text
     assert text.count("WaitTime 1.5;") == len(POINTS) and "Stop;" not in text
     assert text.count(", v100, fine, tSmr\\WObj:=wobjFix;") == 3 * len(POINTS)
-    assert text.count("CONST robtarget ") == 2 * len(POINTS)
+    assert text.count("    LOCAL CONST robtarget ") == 2 * len(POINTS)
     robot = read_robot(out, config=str(cell / "CellM.mod"), tool="tSmr", wobj="wobjFix")
     got = in_uframe(robot, TOOL[:3])
     assert [p.name for p in robot.poses] == list(POINTS) + [f"{n}_up" for n in POINTS]
@@ -144,8 +144,8 @@ def test_tcp_writes_tool0(cell, capsys):
 
 
 @pytest.mark.parametrize("speed, move, declared", [
-    ("200", "v200", None), ("250", "vMeasure", "CONST speeddata vMeasure:=[250,500,5000,1000];"),
-    ("62.5", "vMeasure", "CONST speeddata vMeasure:=[62.5,500,5000,1000];")])
+    ("200", "v200", None), ("250", "vMeasure", "LOCAL CONST speeddata vMeasure:=[250,500,5000,1000];"),
+    ("62.5", "vMeasure", "LOCAL CONST speeddata vMeasure:=[62.5,500,5000,1000];")])
 def test_the_speed_is_a_predefined_speeddata_or_one_declared(cell, capsys, speed, move,
                                                              declared):
     text = measure(capsys, cell, "--tool", "tSmr", "--speed", speed).read_text()
@@ -191,3 +191,23 @@ def test_nothing_is_written_over_a_file(cell, capsys):
                         "--frame", "wobjFix", "--tool", "tSmr", out_name="M.mod")
     assert "never written over" in err
     assert os.path.getsize(cell / "M.mod") == len(b"MODULE M\r\nENDMODULE\r\n")
+
+
+def test_the_plan_orientations_are_kept(cell, capsys):
+    """A plan with robot_q1..q4 (the flange's orientation in world): each
+    point's flange comes back with it, through uframe, oframe and the tool."""
+    turns = {n: (178.0 - 3 * k, 4.0 * k - 6, 30.0 * k) for k, n in enumerate(POINTS)}
+    rows = []
+    for (name, (x, y, z)), angles in zip(POINTS.items(), turns.values()):
+        q = Rotation.from_euler("xyz", angles, degrees=True).as_quat()
+        rows.append(f"{name},{x},{y},{z},0,0,0,{q[3]},{q[0]},{q[1]},{q[2]}\n")
+    (cell / "oriented.csv").write_text("point,laser_x,laser_y,laser_z,robot_x,robot_y,robot_z,"
+                                       "robot_q1,robot_q2,robot_q3,robot_q4\n" + "".join(rows))
+    out = measure(capsys, cell, "--tool", "tSmr", plan="oriented.csv")
+    robot = read_robot(out, config=str(cell / "CellM.mod"), tool="tSmr", wobj="wobjFix")
+    by_name = {p.name: p.flange for p in robot.poses}
+    got = in_uframe(robot, TOOL[:3])
+    for name, angles in turns.items():
+        want = Rotation.from_euler("xyz", angles, degrees=True).as_matrix()
+        assert np.allclose(by_name[name][:3, :3], want, atol=1e-5)
+        assert np.allclose(got[name], POINTS[name], atol=1e-3)
