@@ -211,3 +211,15 @@ def test_the_plan_orientations_are_kept(cell, capsys):
         want = Rotation.from_euler("xyz", angles, degrees=True).as_matrix()
         assert np.allclose(by_name[name][:3, :3], want, atol=1e-5)
         assert np.allclose(got[name], POINTS[name], atol=1e-3)
+
+
+def test_json_names_the_robtargets(cell, capsys):
+    from test_schemas import validate
+    code, text, err = cli(capsys, "program", "--measure", cell / "plan.csv", cell / "CellM.mod",
+                          "--frame", "wobjFix", "--tool", "tSmr", "--json")
+    assert code == 0, err
+    d = json.loads(text)
+    validate("measurement-program", d)
+    m = d["measurement_program"]
+    assert (m["vendor"], m["name"], m["frame"], m["tool"]) == ("abb", "MEASURE", "wobjFix", "tSmr")
+    assert m["points"] == m["positions"] == list(POINTS) and m["file"] is None
