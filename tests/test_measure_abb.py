@@ -144,7 +144,8 @@ def test_tcp_writes_tool0(cell, capsys):
 
 
 @pytest.mark.parametrize("speed, move, declared", [
-    ("200", "v200", None), ("250", "vMeasure", "LOCAL CONST speeddata vMeasure:=[250,500,5000,1000];"),
+    ("200", "v200", None),
+    ("250", "vMeasure", "LOCAL CONST speeddata vMeasure:=[250,500,5000,1000];"),
     ("62.5", "vMeasure", "LOCAL CONST speeddata vMeasure:=[62.5,500,5000,1000];")])
 def test_the_speed_is_a_predefined_speeddata_or_one_declared(cell, capsys, speed, move,
                                                              declared):
