@@ -105,10 +105,10 @@ def _check_wobj(frame) -> None:
 
 
 def _object_frame(frame):
-    """The work object's object frame (its pose in the user frame), from the
-    file that declares it."""
-    from ...parsing.backup import load_one
-    oframe = load_one(frame.file).frame(frame.name + ".oframe")
+    """The work object's object frame (its pose in the user frame), read
+    again from the module the work object was read from."""
+    from .rapid import parse
+    oframe = parse(frame.document).frame(frame.name + ".oframe")
     if oframe.pose is None:
         raise UcsioError(f"--frame {frame.name}: its object frame has no literal value",
                          file=oframe.file, line=oframe.line)
