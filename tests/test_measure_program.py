@@ -237,6 +237,8 @@ def test_a_vendor_without_a_writer_says_so(cell, capsys, controller, frame, tool
     assert f"{title} has no measurement program writer yet" in err
 
 
+# what solve --robot needs besides --config: the tool and work object a module's robtargets are in
+ROBOT_SIDE = {"abb": {"tool": "tReflector", "wobj": "wobjTable"}}
 LOOPS = {   # vendor: (controller, frame, tool, -o, the frame's and tool's values, --config, names)
     # wobjTable's uframe (its oframe is the identity) and tReflector, as CellR02.mod lists them
     "abb": (f"{DEMO}/R02_abb/CellR02.mod", "wobjTable", "tReflector", "LOOP.mod",
@@ -248,8 +250,6 @@ LOOPS = {   # vendor: (controller, frame, tool, -o, the frame's and tool's value
     "yaskawa": (f"{YASKAWA}/UFRAME.CND", "UF2", f"{YASKAWA}/TOOL.CND:UT3", "LOOP.JBI",
                 (1450.0, 390.0, 610.0, 0.0, 0.0, 90.0), (0.48, -0.73, 162.25, 0, 0, 0),
                 (f"{YASKAWA}/TOOL.CND", f"{YASKAWA}/UFRAME.CND"), "C{k:05d}")}
-# what solve --robot needs besides --config: the tool and work object a module's robtargets are in
-ROBOT_SIDE = {"abb": {"tool": "tReflector", "wobj": "wobjTable"}}
 
 
 @pytest.mark.parametrize("vendor", sorted(LOOPS))
