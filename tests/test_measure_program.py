@@ -230,7 +230,6 @@ def test_an_existing_file_is_never_overwritten(cell, capsys):
 
 
 @pytest.mark.parametrize("controller, frame, tool, title", [
-    (DEMO / "R02_abb/CellR02.mod", "wobjTable", "tReflector", "ABB"),
     (DEMO / "R01_kuka/$config.dat", "BASE_DATA[3]", "TOOL_DATA[1]", "KUKA")])
 def test_a_vendor_without_a_writer_says_so(cell, capsys, controller, frame, tool, title):
     err = write_refused(capsys, cell, "--measure", cell / "plan.csv", controller, "--frame",
@@ -238,7 +237,13 @@ def test_a_vendor_without_a_writer_says_so(cell, capsys, controller, frame, tool
     assert f"{title} has no measurement program writer yet" in err
 
 
+# what solve --robot needs besides --config: the tool and work object a module's robtargets are in
+ROBOT_SIDE = {"abb": {"tool": "tReflector", "wobj": "wobjTable"}}
 LOOPS = {   # vendor: (controller, frame, tool, -o, the frame's and tool's values, --config, names)
+    # wobjTable's uframe (its oframe is the identity) and tReflector, as CellR02.mod lists them
+    "abb": (f"{DEMO}/R02_abb/CellR02.mod", "wobjTable", "tReflector", "LOOP.mod",
+            (1245.0, -425.0, 700.0, 0.0, 0.0, -35.0), (1.5, -2.0, 182.3, 0, 0, 0),
+            f"{DEMO}/R02_abb/CellR02.mod", "M{k}"),
     "fanuc": ("{cell}/sysframe.va", "UF1", "UT1", "LOOP.LS", UF1, UT1, "{cell}/sysframe.va",
               "M{k}"),
     # the comment before each move names its position
@@ -274,7 +279,8 @@ def test_the_whole_loop_finds_the_true_frame(cell, capsys, vendor):
     out = cell / name
     assert cli(capsys, "program", "--measure", plan, controller, "--frame", frame, "--tool",
                tool, "-o", out)[0] == 0
-    robot = read_robot(out, config=config)
+    side = ROBOT_SIDE.get(vendor, {})
+    robot = read_robot(out, config=config, **side)
     by_point = {p.name: p.flange for p in robot.poses} | {p.point: p.flange for p in robot.poses}
     true = matrix(*frame_values) @ matrix(1.2, -0.9, 0.5, 0.05, -0.08, 0.06)
     tcp = np.append(np.asarray(tool_values[:3]), 1.0)
@@ -291,7 +297,8 @@ def test_the_whole_loop_finds_the_true_frame(cell, capsys, vendor):
         laser = cell / f"tracker{trial}.csv"
         laser.write_text("point,x,y,z\n" + "".join(rows))
         got = api.solve(laser=laser, robot=out, config=config, tool=tool_spec,
-                        no_exclusion=True).as_dict()
+                        no_exclusion=True,
+                        **{f"robot_{k}": v for k, v in side.items()}).as_dict()
         assert got["n_used"] == len(points)
         measured = np.asarray(got["frame"]["matrix"])
         within += np.linalg.norm((measured @ w - true @ w)[:3]) <= at_95

@@ -35,7 +35,8 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                          file=cf.path)
     vendors.program_vendor(output, cf.vendor)     # -o names another vendor's program: refused
     user = find_frame(cf, frame)
-    _check_parent(user, "robot", f"--frame {frame}", "a user frame")
+    # fixed in robot world: on the robot's base, or (ABB's work objects) on the world
+    _check_parent(user, ("robot", "world"), f"--frame {frame}", "a user frame")
     held, offset = _tool(cf, tool, tcp)
     planned, warnings = _plan(plan)
     rotations = _rotations(planned, user, held, orientation, writer)
@@ -89,12 +90,12 @@ def _tool(cf, tool, tcp):
     else:
         name = tool
     held = find_frame(cf, name)
-    _check_parent(held, "flange", f"--tool {tool}", "a tool the robot holds")
+    _check_parent(held, ("flange",), f"--tool {tool}", "a tool the robot holds")
     return held, (0.0, 0.0, 0.0)
 
 
-def _check_parent(frame, kind: str, option: str, what: str) -> None:
-    if frame.pose is None or frame.parent.kind != kind:
+def _check_parent(frame, kinds: tuple[str, ...], option: str, what: str) -> None:
+    if frame.pose is None or frame.parent.kind not in kinds:
         raise UcsioError(f"{option}: {frame.name} is not {what} (its parent: "
                          f"{frame.parent})", file=frame.file, line=frame.line)
 

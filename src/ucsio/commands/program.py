@@ -82,7 +82,8 @@ def add_arguments(p) -> None:
                    help="the reflector's tool: one of CONTROLLER's, or of FILE (Yaskawa's "
                         "TOOL.CND:UT1)")
     m.add_argument("--tcp", metavar="X,Y,Z",
-                   help="the reflector on the flange (FANUC: the faceplate's positions, UT 0)")
+                   help="the reflector on the flange (FANUC: the faceplate's positions, UT 0; "
+                        "ABB: tool0's)")
     m.add_argument("--approach", type=float, default=100.0, metavar="MM",
                    help="approach and retract distance (default 100)")
     m.add_argument("--approach-dir", metavar="X,Y,Z",
@@ -99,7 +100,8 @@ def add_arguments(p) -> None:
     m.add_argument("--dwell", type=float, default=None, metavar="S",
                    help="wait S seconds at each point (default: a stop)")
     p.add_argument("-o", "--output", metavar="OUT.LS|OUT.JBI",
-                   help="write the program here (default: standard output)")
+                   help="write the program here (default: standard output); --measure's "
+                        "ABB module: OUT.mod")
 
 
 def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None,

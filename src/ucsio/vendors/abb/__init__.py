@@ -63,6 +63,10 @@ class Abb(Defaults):
         from .write import check_readback
         check_readback(again, changes, path)
 
+    # ``ucsio program --measure``: a RAPID module of robtargets in the work object
+    def measurement_program(self, frame, tool, targets, settings):
+        from .measure import measurement_program
+        return measurement_program(frame, tool, targets, settings)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):
