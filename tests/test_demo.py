@@ -176,13 +176,14 @@ def test_demo_out_writes_each_cells_measurement_program(tmp_path):
         out = tmp_path / "out" / "measure" / cell.measure_file
         assert m["written"] == str(Path("out") / "measure" / cell.measure_file) or \
             Path(m["written"]).resolve() == out.resolve()
+        side = m["read_back"]                   # how solve reads it: the program says
         with resources.as_file(data) as root:
-            config = [str(Path(root) / (cell.config or cell.controller))]
-            if cell.config:
-                config.append(str(Path(root) / cell.controller))
-            tool = f"{config[0]}:{cell.tool}"
-            solved = api.solve(laser=Path(root) / cell.measurement, robot=out, config=config,
-                               tool=tool, no_exclusion=True).as_dict()
+            solved = api.solve(laser=Path(root) / cell.measurement, robot=out,
+                               config=[str(Path(root) / f) for f in side["config"]],
+                               tool=str(Path(root) / side["tool"]),
+                               robot_tool=side.get("robot_tool", "tool0"),
+                               robot_wobj=side.get("robot_wobj", "wobj0"),
+                               no_exclusion=True).as_dict()
             sim = load(Path(root) / cell.controller).frame(cell.frame).pose
         assert solved["n_used"] == solved["n_points"] == len(m["points"])
         f = solved["frame"]

@@ -49,7 +49,28 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                         os.path.basename(os.fspath(plan)), _program_name(output))
     result = writer.measurement_program(user, held, targets, settings)
     result.warnings = warnings + list(result.warnings)
+    result.read_back = _read_back(result, cf, held, offset, tcp, output)
     return result
+
+
+def _read_back(result, cf, held, offset, tcp, output) -> dict:
+    """How ``solve`` reads the program back as the robot side: ``config``,
+    the files that hold its frames (the tool's, then the controller's); the
+    names its positions are taught with where the vendor asks (ABB's
+    ``robot_tool`` and ``robot_wobj``); the reflector (``tool`` FILE:NAME or
+    ``tcp`` x,y,z); and ``solve``, the command line with them."""
+    import shlex
+    config = [f for f in dict.fromkeys([held.file if held is not None else None, cf.path]) if f]
+    reflector = ({"tool": f"{held.file}:{held.name}"} if held is not None else
+                 {"tcp": ",".join(f"{v:g}" for v in offset)})
+    words = ["ucsio", "solve", "--laser", "TRACKER.csv", "--robot",
+             output if output not in (None, "-") else "PROGRAM"]
+    for f in config:
+        words += ["--config", f]
+    for key, value in {**result.robot_side, **reflector}.items():
+        words += ["--" + key.replace("_", "-"), value]
+    return {"config": config, **result.robot_side, **reflector,
+            "solve": " ".join(shlex.quote(w) for w in words)}
 
 
 def _check_settings(approach: float, speed: float, dwell) -> None:

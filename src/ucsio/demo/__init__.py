@@ -294,9 +294,15 @@ def _measure(cell: Cell, root: Path, folder: Path | None, skipped: list):
             (folder / name).unlink(missing_ok=True)     # this run's own: a rerun makes it anew
         written = measure.save(made, str(folder / cell.measure_file))
     info = made.as_dict()
+    side = dict(info["read_back"])      # named as the cell's files are, not where the package lies
+    side["config"] = [Path(os.path.relpath(f, root)).as_posix() for f in side["config"]]
+    if "tool" in side:
+        file, _, name = side["tool"].rpartition(":")
+        side["tool"] = f"{Path(os.path.relpath(file, root)).as_posix()}:{name}"
+    side.pop("solve")
     return {"file": cell.measure_file, "name": info["name"], "frame": info["frame"],
             "tool": info["tool"], "points": info["points"], "spread": cell.measure_spread,
-            "text": info["text"], "written": written}
+            "read_back": side, "text": info["text"], "written": written}
 
 
 def _measure_tool(cell: Cell, root: Path) -> str:

@@ -84,7 +84,8 @@ def measurement_program(frame, tool, targets, settings) -> MeasureProgram:
     _read_back(text, settings.name, at + above)
     return MeasureProgram(text=text, name=settings.name, vendor="abb", frame=frame.name,
                           tool=tool_name, points=[t.name for t in targets],
-                          positions=[t.name for t in targets])
+                          positions=[t.name for t in targets],
+                          robot_side={"robot_tool": tool_name, "robot_wobj": frame.name})
 
 
 def _confirm() -> list[str]:

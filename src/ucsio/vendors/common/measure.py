@@ -89,25 +89,29 @@ class MeasureProgram(Value):
     where it was ``written``."""
 
     __slots__ = ("text", "name", "vendor", "frame", "tool", "points", "positions", "warnings",
-                 "written")
+                 "written", "robot_side", "read_back")
 
     def __init__(self, **fields: Any):
         for k in self.__slots__:
             setattr(self, k, fields.get(k))
         if self.warnings is None:
             self.warnings = []
+        if self.robot_side is None:     # --robot-tool/--robot-wobj solve reads it with
+            self.robot_side = {}
 
     @property
     def data(self) -> bytes:
         return self.text.encode("ascii")
 
     def summary(self) -> str:
+        tail = f"\nread it back: {self.read_back['solve']}" if self.read_back else ""
         return (f"wrote {self.written}: {self.name} moves {self.tool} to {len(self.points)} "
                 f"planned point{'s' if len(self.points) != 1 else ''} in {self.frame}; check "
-                "it in simulation and run it at reduced speed first")
+                "it in simulation and run it at reduced speed first" + tail)
 
     def as_dict(self) -> dict[str, Any]:
         return {"file": self.written, "name": self.name, "vendor": self.vendor,
                 "frame": self.frame, "tool": self.tool, "points": list(self.points),
                 "positions": list(self.positions),
-                "warnings": list(self.warnings), "text": self.text}
+                "warnings": list(self.warnings), "read_back": self.read_back,
+                "text": self.text}
