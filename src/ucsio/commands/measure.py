@@ -35,7 +35,8 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                          file=cf.path)
     vendors.program_vendor(output, cf.vendor)     # -o names another vendor's program: refused
     user = find_frame(cf, frame)
-    _check_parent(user, "robot", f"--frame {frame}", "a user frame")
+    # a frame of the robot's (FANUC, Yaskawa) or of the world (a KUKA base)
+    _check_parent(user, ("robot", "world"), f"--frame {frame}", "a user frame")
     held, offset = _tool(cf, tool, tcp)
     planned, warnings = _plan(plan)
     rotations = _rotations(planned, user, held, orientation, writer)
@@ -47,7 +48,20 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                         os.path.basename(os.fspath(plan)), _program_name(output))
     result = writer.measurement_program(user, held, targets, settings)
     result.warnings = warnings + list(result.warnings)
+    _check_suffix(result, output)
     return result
+
+
+def _check_suffix(result, output) -> None:
+    """A program of several files (KUKA's .src and .dat) is named by its
+    main file: -o must end as that file does, so the others go beside it."""
+    if result.suffix is None or not output or output == "-":
+        return
+    if os.path.splitext(output)[1].lower() != result.suffix:
+        others = ", ".join(s for s, _ in result.companions)
+        raise UcsioError(f"-o {output}: a {result.vendor.upper()} measurement program is "
+                         f"NAME{result.suffix} with its {others} beside it: -o "
+                         f"NAME{result.suffix}")
 
 
 def _check_settings(approach: float, speed: float, dwell) -> None:
@@ -88,12 +102,12 @@ def _tool(cf, tool, tcp):
     else:
         name = tool
     held = find_frame(cf, name)
-    _check_parent(held, "flange", f"--tool {tool}", "a tool the robot holds")
+    _check_parent(held, ("flange",), f"--tool {tool}", "a tool the robot holds")
     return held, (0.0, 0.0, 0.0)
 
 
-def _check_parent(frame, kind: str, option: str, what: str) -> None:
-    if frame.pose is None or frame.parent.kind != kind:
+def _check_parent(frame, kinds, option: str, what: str) -> None:
+    if frame.pose is None or frame.parent.kind not in kinds:
         raise UcsioError(f"{option}: {frame.name} is not {what} (its parent: "
                          f"{frame.parent})", file=frame.file, line=frame.line)
 
@@ -163,14 +177,40 @@ def _program_name(output) -> str:
 
 
 def save(result, path: str) -> str:
-    """Write the program; an existing file is never replaced."""
+    """Write the program, its companions first (KUKA's .dat before its
+    .src), each atomically; no file is ever replaced: all are written or,
+    should one fail, none stays (those already written are removed)."""
     from ..files import atomic_write
+    files = [(beside(path, suffix), text.encode("ascii")) for suffix, text in result.companions]
+    files.append((path, result.data))
 
-    def refuse_existing():
-        if os.path.lexists(path):
-            raise UcsioError("exists: a measurement program is never written over a file; "
-                             "choose another -o", file=path)
-    refuse_existing()
-    written, _ = atomic_write(path, result.data, check=refuse_existing)
-    result.written = written
-    return written
+    def refuse_existing(names):
+        for name in names:
+            if os.path.lexists(name):
+                raise UcsioError("exists: a measurement program is never written over a "
+                                 "file; choose another -o", file=name)
+    names = [name for name, _ in files]
+    refuse_existing(names)
+    done: list[str] = []
+    try:
+        for k, (name, data) in enumerate(files):
+            # just before each rename: this file and those still to come are free
+            written, _ = atomic_write(name, data, check=lambda: refuse_existing(names[k:]))
+            done.append(written)
+    except BaseException:
+        for name in done:
+            try:
+                os.unlink(name)
+            except OSError:
+                pass
+        raise
+    result.written = done[-1]
+    texts = [result.text] + [t for _, t in result.companions]
+    result.files = list(zip([done[-1]] + done[:-1], texts))
+    return done[-1]
+
+
+def beside(path: str, suffix: str) -> str:
+    """``path`` with ``suffix`` for its own, in its case (M.SRC: M.DAT)."""
+    stem, own = os.path.splitext(path)
+    return stem + (suffix.upper() if own.isupper() else suffix)

@@ -207,5 +207,9 @@ def run_measure(args) -> int:
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
                           orientation=args.orientation, speed=args.speed, dwell=args.dwell,
                           output=args.output)
+    if result.companions and (not args.output or args.output == "-") and not args.json:
+        raise UsageError(f"ucsio program: a {result.vendor.upper()} measurement program is "
+                         "more than one file, not one on standard output: give -o "
+                         f"NAME{result.suffix} (or --json, which holds every file's text)")
     return deliver(args, result, measure.save,
                    lambda made: {"measurement_program": made.as_dict()})

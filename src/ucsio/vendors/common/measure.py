@@ -86,23 +86,32 @@ class MeasureProgram(Value):
     ``name``, the ``frame`` and ``tool`` it moves in, the ``points`` (their
     names, in the program's order), the ``positions`` that reach them (the
     program's names, which ``solve --robot`` reports), ``warnings``, and
-    where it was ``written``."""
+    where it was ``written``. A program of more than one file (KUKA's .src
+    and .dat) names the ``suffix`` -o must have (None: any) and its
+    ``companions``, (suffix, text) each, written beside -o's file (the
+    same name with that suffix, in -o's case) and listed in ``files``."""
 
     __slots__ = ("text", "name", "vendor", "frame", "tool", "points", "positions", "warnings",
-                 "written")
+                 "written", "suffix", "companions", "files")
 
     def __init__(self, **fields: Any):
         for k in self.__slots__:
             setattr(self, k, fields.get(k))
         if self.warnings is None:
             self.warnings = []
+        if self.companions is None:
+            self.companions = []
+        if self.files is None:      # (the file written or None, text), the main file first
+            self.files = [(None, self.text)] + [(None, t) for _, t in self.companions]
 
     @property
     def data(self) -> bytes:
         return self.text.encode("ascii")
 
     def summary(self) -> str:
-        return (f"wrote {self.written}: {self.name} moves {self.tool} to {len(self.points)} "
+        written = " and ".join(str(f) for f, _ in self.files) if self.companions \
+            else self.written
+        return (f"wrote {written}: {self.name} moves {self.tool} to {len(self.points)} "
                 f"planned point{'s' if len(self.points) != 1 else ''} in {self.frame}; check "
                 "it in simulation and run it at reduced speed first")
 
@@ -110,4 +119,5 @@ class MeasureProgram(Value):
         return {"file": self.written, "name": self.name, "vendor": self.vendor,
                 "frame": self.frame, "tool": self.tool, "points": list(self.points),
                 "positions": list(self.positions),
-                "warnings": list(self.warnings), "text": self.text}
+                "warnings": list(self.warnings), "text": self.text,
+                "files": [{"file": f, "text": t} for f, t in self.files]}
