@@ -230,8 +230,7 @@ def test_an_existing_file_is_never_overwritten(cell, capsys):
 
 
 @pytest.mark.parametrize("controller, frame, tool, title", [
-    (DEMO / "R02_abb/CellR02.mod", "wobjTable", "tReflector", "ABB"),
-    (DEMO / "R01_kuka/$config.dat", "BASE_DATA[3]", "TOOL_DATA[1]", "KUKA")])
+    (DEMO / "R02_abb/CellR02.mod", "wobjTable", "tReflector", "ABB")])
 def test_a_vendor_without_a_writer_says_so(cell, capsys, controller, frame, tool, title):
     err = write_refused(capsys, cell, "--measure", cell / "plan.csv", controller, "--frame",
                         frame, "--tool", tool, out_name="OUT.txt")
@@ -244,7 +243,13 @@ LOOPS = {   # vendor: (controller, frame, tool, -o, the frame's and tool's value
     # a job names no position: the plan's points are named as the job's
     "yaskawa": (f"{YASKAWA}/UFRAME.CND", "UF2", f"{YASKAWA}/TOOL.CND:UT3", "LOOP.JBI",
                 (1450.0, 390.0, 610.0, 0.0, 0.0, 90.0), (0.48, -0.73, 162.25, 0, 0, 0),
-                (f"{YASKAWA}/TOOL.CND", f"{YASKAWA}/UFRAME.CND"), "C{k:05d}")}
+                (f"{YASKAWA}/TOOL.CND", f"{YASKAWA}/UFRAME.CND"), "C{k:05d}"),
+    # BASE_DATA[3] (A 90, B -25) and TOOL_DATA[1] of the demo's $config.dat, as x y z w p r
+    "kuka": (f"{DEMO}/R01_kuka/$config.dat", "BASE_DATA[3]", "TOOL_DATA[1]", "LOOP.src",
+             (6130.0, 2444.711, 1156.772, 0.0, -25.0, 90.0), (12.5, -3.2, 385.6, 0.0, -35.0, 0.0),
+             f"{DEMO}/R01_kuka/$config.dat", "M{k}")}
+# the program's file solve --robot reads, where it is not -o's (KUKA: the .dat beside the .src)
+ROBOT_SIDE = {"kuka": "LOOP.dat"}
 
 
 @pytest.mark.parametrize("vendor", sorted(LOOPS))
@@ -274,6 +279,7 @@ def test_the_whole_loop_finds_the_true_frame(cell, capsys, vendor):
     out = cell / name
     assert cli(capsys, "program", "--measure", plan, controller, "--frame", frame, "--tool",
                tool, "-o", out)[0] == 0
+    out = cell / ROBOT_SIDE.get(vendor, name)
     robot = read_robot(out, config=config)
     by_point = {p.name: p.flange for p in robot.poses} | {p.point: p.flange for p in robot.poses}
     true = matrix(*frame_values) @ matrix(1.2, -0.9, 0.5, 0.05, -0.08, 0.06)
