@@ -45,7 +45,8 @@ OUT writes the measurement program instead: the reflector moved to each
 point of the plan in the controller's frame NAME, approach and retract
 --approach MM along --approach-dir (the frame's +Z), linear moves at
 --speed MM/S, a stop (or --dwell S) at each point (commands.measure).
-An existing -o is never replaced."""
+An existing -o is never replaced. KUKA's is two files: -o NAME.src and
+NAME.dat beside it, both written or neither."""
 from __future__ import annotations
 
 import sys
@@ -82,7 +83,8 @@ def add_arguments(p) -> None:
                    help="the reflector's tool: one of CONTROLLER's, or of FILE (Yaskawa's "
                         "TOOL.CND:UT1)")
     m.add_argument("--tcp", metavar="X,Y,Z",
-                   help="the reflector on the flange (FANUC: the faceplate's positions, UT 0)")
+                   help="the reflector on the flange (FANUC: the faceplate's positions, UT 0; "
+                        "KUKA: TOOL_NO 0)")
     m.add_argument("--approach", type=float, default=100.0, metavar="MM",
                    help="approach and retract distance (default 100)")
     m.add_argument("--approach-dir", metavar="X,Y,Z",
@@ -96,7 +98,8 @@ def add_arguments(p) -> None:
     m.add_argument("--dwell", type=float, default=None, metavar="S",
                    help="wait S seconds at each point (default: a stop)")
     p.add_argument("-o", "--output", metavar="OUT.LS|OUT.JBI",
-                   help="write the program here (default: standard output)")
+                   help="write the program here (default: standard output); with --measure "
+                        "KUKA's is OUT.src, and OUT.dat beside it")
 
 
 def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None,
