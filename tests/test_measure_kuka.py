@@ -239,3 +239,16 @@ def test_standard_output_and_json(cell, capsys):
                                                str(cell / "MEASURE.dat")]
     for f in m["files"]:
         assert open(f["file"], "rb").read() == f["text"].encode()
+
+
+@pytest.mark.parametrize("text, where", [
+    # a program: what the measurement program holds reads, anything else is refused
+    ("&ACCESS RVP\r\nDEF M( )\r\nLIN XP1 C_DIS\r\nEND\r\n", "bad.src:3:9"),
+    ("DEF M( )\r\nHALT\r\n", "bad.src:3:1"),                       # no END
+    # a data list is not a program: motions stay refused there
+    ("DEFDAT  M\r\nHALT\r\nENDDAT\r\n", "bad.src:2:6"),
+])
+def test_check_refuses_what_the_program_grammar_does_not_hold(tmp_path, capsys, text, where):
+    (tmp_path / "bad.src").write_bytes(text.encode())
+    code, _, err = cli(capsys, "check", tmp_path / "bad.src")
+    assert code == 2 and where in err, err
