@@ -267,7 +267,7 @@ def test_every_option_is_a_keyword_of_the_command_s_function_and_the_api(command
 
 def measure_options(parser) -> list[str]:
     """The options of `program --measure` (their own group): another code
-    path, commands.measure.make and api.measurement_program."""
+    path, programs.measure.make and api.measurement_program."""
     return [a.dest for g in parser._action_groups if g.title.startswith("the measurement program")
             for a in g._group_actions]
 
@@ -275,7 +275,7 @@ def measure_options(parser) -> list[str]:
 def test_every_measure_option_is_a_keyword_of_measure_and_the_api():
     import inspect
     from ucsio.cli import build_parser
-    from ucsio.commands import measure
+    from ucsio.programs import measure
     parser = build_parser("program")
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     dests = set(measure_options(sub.choices["program"])) - {"measure"}   # the plan

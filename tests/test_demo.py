@@ -178,7 +178,8 @@ def test_demo_out_writes_each_cells_measurement_program(tmp_path):
             Path(m["written"]).resolve() == out.resolve()
         side = m["read_back"]                   # how solve reads it: the program says
         with resources.as_file(data) as root:
-            solved = api.solve(laser=Path(root) / cell.measurement, robot=out,
+            solved = api.solve(laser=Path(root) / cell.measurement,
+                               robot=out.parent / Path(side["robot"]).name,
                                config=[str(Path(root) / f) for f in side["config"]],
                                tool=str(Path(root) / side["tool"]),
                                robot_tool=side.get("robot_tool", "tool0"),

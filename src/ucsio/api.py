@@ -365,11 +365,12 @@ def measurement_program(plan: PathLike, controller: PathLike, frame: str, *,
     """``ucsio program --measure --json``: the measurement program that moves
     the reflector (``tool``, a tool of ``controller`` or "FILE:NAME"; or
     ``tcp`` on the flange) to each point of ``plan`` in ``controller``'s
-    ``frame``, in the controller's language (FANUC .LS, Yaskawa .JBI), read
-    back before it is returned; with ``output`` also written there, which
-    must not exist. ``spread`` (deg) turns the tool point by point for a
-    TCP solved with the frame (``plan(tcp="solve")`` says how much)."""
-    from .commands import measure
+    ``frame``, in the controller's language (ABB .mod, FANUC .LS, KUKA .src
+    and .dat, Yaskawa .JBI), read back before it is returned; with ``output``
+    also written there (KUKA: its .dat beside it), which must not exist.
+    ``spread`` (deg) turns the tool point by point for a TCP solved with the
+    frame (``plan(tcp="solve")`` says how much)."""
+    from .programs import measure
     made = measure.make(os.fspath(plan), os.fspath(controller), frame, tool=tool, tcp=tcp,
                         approach=approach, approach_dir=approach_dir, orientation=orientation,
                         spread=spread, speed=speed, dwell=dwell,

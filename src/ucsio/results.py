@@ -656,12 +656,20 @@ class ProgramOutput(Result):
         return self.program.text
 
 
+class MeasurementProgramFile(Result):
+    """One file of a measurement program: the ``file`` written (None: not
+    written) and its ``text``."""
+    file: str | None
+    text: str
+
+
 class MeasurementProgramInfo(Result):
     """A measurement program: its ``text`` (CRLF), ``name``, ``vendor``, the
     ``frame`` and ``tool`` it moves in, the plan's ``points`` in the
     program's order and the ``positions`` that reach them (FANUC ``P[1]``,
-    Yaskawa ``C00000``), ``warnings``, and the ``file`` written (None on
-    standard output)."""
+    Yaskawa ``C00000``, KUKA ``XP1``), ``warnings``, the ``file`` written
+    (None on standard output), and ``files``: every file, the main one
+    first (KUKA's .src, then its .dat)."""
     file: str | None
     name: str
     vendor: str
@@ -671,6 +679,7 @@ class MeasurementProgramInfo(Result):
     positions: list[str]
     warnings: list[str]
     text: str
+    files: list[MeasurementProgramFile]
 
 
 class MeasurementProgramOutput(Result):

@@ -56,6 +56,7 @@ from __future__ import annotations
 import sys
 
 from ..output import emit_json
+from ..readers.options import parse_values  # noqa: F401  (their home: readers.options)
 
 
 def add_arguments(p) -> None:
@@ -82,18 +83,6 @@ def add_arguments(p) -> None:
     p.add_argument("--backup", action="store_true",
                    help="with --in-place: keep the original as FILE.bak (never overwriting "
                         "one: then FILE.bak.1, FILE.bak.2, ...)")
-
-
-def parse_values(text: str, n: int, option: str):
-    from ..errors import UcsioError
-    parts = [s for s in text.replace(";", ",").split(",")]
-    try:
-        values = [float(s) for s in parts]
-    except ValueError:
-        raise UcsioError(f"{option} {text!r}: expected {n} numbers separated by commas") from None
-    if len(values) != n or not all(v == v and abs(v) != float("inf") for v in values):
-        raise UcsioError(f"{option} {text!r}: expected {n} finite numbers separated by commas")
-    return values
 
 
 def target_pose(args):

@@ -44,8 +44,9 @@ without a program writer.
 OUT writes the measurement program instead: the reflector moved to each
 point of the plan in the controller's frame NAME, approach and retract
 --approach MM along --approach-dir (the frame's +Z), linear moves at
---speed MM/S, a stop (or --dwell S) at each point (commands.measure).
-An existing -o is never replaced."""
+--speed MM/S, a stop (or --dwell S) at each point (programs.measure).
+An existing -o is never replaced. KUKA's is two files: -o NAME.src and
+NAME.dat beside it, both written or neither."""
 from __future__ import annotations
 
 import sys
@@ -83,7 +84,7 @@ def add_arguments(p) -> None:
                         "TOOL.CND:UT1)")
     m.add_argument("--tcp", metavar="X,Y,Z",
                    help="the reflector on the flange (FANUC: the faceplate's positions, UT 0; "
-                        "ABB: tool0's)")
+                        "ABB: tool0's; KUKA: TOOL_NO 0)")
     m.add_argument("--approach", type=float, default=100.0, metavar="MM",
                    help="approach and retract distance (default 100)")
     m.add_argument("--approach-dir", metavar="X,Y,Z",
@@ -101,7 +102,7 @@ def add_arguments(p) -> None:
                    help="wait S seconds at each point (default: a stop)")
     p.add_argument("-o", "--output", metavar="OUT.LS|OUT.JBI",
                    help="write the program here (default: standard output); --measure's "
-                        "ABB module: OUT.mod")
+                        "ABB module: OUT.mod; KUKA's: OUT.src, and OUT.dat beside it")
 
 
 def make(solution, frame: str, *, group=None, pr=None, posreg=None, comment=None,
@@ -203,7 +204,7 @@ def run_measure(args) -> int:
     """``program --measure``: the measurement program, written only where no
     file is."""
     from ..errors import UsageError
-    from . import measure
+    from ..programs import measure
     for option in ("group", "pr", "posreg", "comment", "wpr", "p", "var", "vendor"):
         if getattr(args, option) is not None:
             raise UsageError(f"ucsio program: --{option} does not go with --measure (the "
@@ -212,5 +213,9 @@ def run_measure(args) -> int:
                           tcp=args.tcp, approach=args.approach, approach_dir=args.approach_dir,
                           orientation=args.orientation, spread=args.spread,
                           speed=args.speed, dwell=args.dwell, output=args.output)
+    if result.companions and (not args.output or args.output == "-") and not args.json:
+        raise UsageError(f"ucsio program: a {result.vendor.upper()} measurement program is "
+                         "more than one file, not one on standard output: give -o "
+                         f"NAME{result.suffix} (or --json, which holds every file's text)")
     return deliver(args, result, measure.save,
                    lambda made: {"measurement_program": made.as_dict()})

@@ -18,6 +18,7 @@ from . import add_uncertainty_options
 from .. import defaults
 from ..errors import UcsioError
 from ..files import atomic_write_text
+from ..readers.options import check_tcp, parse_tcp  # noqa: F401  (their home: readers.options)
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -128,30 +129,6 @@ def read_inputs(measurement=None, laser=None, robot=None, *, laser_units: str = 
     from ..readers.measurement import read_measurement
     return read_measurement(measurement, laser_units=laser_units, angle_units=angle_units,
                             quaternion_order=quaternion_order), []
-
-
-def parse_tcp(text: str) -> tuple[float, float, float]:
-    parts = [s.strip() for s in text.replace(";", ",").split(",")]
-    try:
-        vals = tuple(float(s) for s in parts)
-    except ValueError:
-        raise UcsioError(f"--tcp {text!r}: expected three numbers X,Y,Z (mm)") from None
-    return check_tcp(vals, repr(text))
-
-
-def check_tcp(vals, shown: str) -> tuple[float, float, float]:
-    """Three finite numbers (mm) within the magnitude any value may have."""
-    import math
-    from ..defaults import MAX_MAGNITUDE
-    try:
-        vals = tuple(float(v) for v in vals)
-    except (TypeError, ValueError):
-        raise UcsioError(f"--tcp {shown}: expected three numbers X,Y,Z (mm)") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise UcsioError(f"--tcp {shown}: expected three finite numbers X,Y,Z (mm)")
-    if any(abs(v) > MAX_MAGNITUDE for v in vals):
-        raise UcsioError(f"--tcp {shown}: at most {MAX_MAGNITUDE:.0e} mm in magnitude")
-    return vals  # type: ignore[return-value]
 
 
 def resolve_tcp(tcp, tool, warnings: list | None = None

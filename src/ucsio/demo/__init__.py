@@ -283,7 +283,7 @@ def _measure(cell: Cell, root: Path, folder: Path | None, skipped: list):
             cell.vendor, "measurement program writer") + f": {cell.measure_file} is not "
             "generated"})
         return None
-    from ..commands import measure
+    from ..programs import measure
     made = measure.make(root / cell.measurement, root / cell.controller, cell.frame,
                         tool=_measure_tool(cell, root), spread=cell.measure_spread,
                         output=cell.measure_file)

@@ -5,7 +5,7 @@ and the program made but not yet written.
 A vendor's ``measurement_program(frame, tool, targets, **settings)`` turns
 the targets (each planned point's pose of the written tool in the frame, and
 its approach pose) into its own language; the generic part
-(``commands.measure``) reads the plan and the controller and writes the file.
+(``programs.measure``) reads the plan and the controller and writes the file.
 """
 from __future__ import annotations
 
@@ -86,16 +86,28 @@ class MeasureProgram(Value):
     ``name``, the ``frame`` and ``tool`` it moves in, the ``points`` (their
     names, in the program's order), the ``positions`` that reach them (the
     program's names, which ``solve --robot`` reports), ``warnings``, and
-    where it was ``written``."""
+    where it was ``written``. A program of more than one file (KUKA's .src
+    and .dat) names the ``suffix`` -o must have (None: any) and its
+    ``companions``, (suffix, text) each, written beside -o's file (the
+    same name with that suffix, in -o's case) and listed in ``files``.
+    ``robot_side``: the options ``solve`` reads its positions with (ABB's
+    robot_tool and robot_wobj); ``robot_suffix``: the file it reads where
+    not the main one (KUKA's .dat); ``read_back``: the command's words
+    for it (``programs.measure``)."""
 
     __slots__ = ("text", "name", "vendor", "frame", "tool", "points", "positions", "warnings",
-                 "written", "robot_side", "read_back")
+                 "written", "suffix", "companions", "files", "robot_side", "robot_suffix",
+                 "read_back")
 
     def __init__(self, **fields: Any):
         for k in self.__slots__:
             setattr(self, k, fields.get(k))
         if self.warnings is None:
             self.warnings = []
+        if self.companions is None:
+            self.companions = []
+        if self.files is None:      # (the file written or None, text), the main file first
+            self.files = [(None, self.text)] + [(None, t) for _, t in self.companions]
         if self.robot_side is None:     # --robot-tool/--robot-wobj solve reads it with
             self.robot_side = {}
 
@@ -104,8 +116,10 @@ class MeasureProgram(Value):
         return self.text.encode("ascii")
 
     def summary(self) -> str:
+        written = " and ".join(str(f) for f, _ in self.files) if self.companions \
+            else self.written
         tail = f"\nread it back: {self.read_back['solve']}" if self.read_back else ""
-        return (f"wrote {self.written}: {self.name} moves {self.tool} to {len(self.points)} "
+        return (f"wrote {written}: {self.name} moves {self.tool} to {len(self.points)} "
                 f"planned point{'s' if len(self.points) != 1 else ''} in {self.frame}; check "
                 "it in simulation and run it at reduced speed first" + tail)
 
@@ -114,4 +128,4 @@ class MeasureProgram(Value):
                 "frame": self.frame, "tool": self.tool, "points": list(self.points),
                 "positions": list(self.positions),
                 "warnings": list(self.warnings), "read_back": self.read_back,
-                "text": self.text}
+                "text": self.text, "files": [{"file": f, "text": t} for f, t in self.files]}

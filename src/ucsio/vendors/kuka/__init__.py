@@ -51,6 +51,10 @@ class Kuka(Defaults):
         from .write import declaration_end
         return declaration_end(text, last)
 
+    # ``ucsio program --measure``: a KRL program, NAME.src and NAME.dat
+    def measurement_program(self, frame, tool, targets, settings):
+        from .measure import measurement_program
+        return measurement_program(frame, tool, targets, settings)
 
     # -- taught points, unset frames, comparing frames (diff) ---------------------------
     def taught_points(self, cf, frame, cache=None):

@@ -103,6 +103,7 @@ _DEFDAT = regex.lazy(r"^[ \t\f\r]*DEFDAT[ \t\f\r]+([A-Za-z_$][\w$]*)(?:[ \t\f\r]
 # word DEFDAT or ENDDAT as the grammar's NAME would end it (group 1 "E" for
 # ENDDAT); and statement lines: not blank, not a comment, not a header
 _LAYOUT_LINE = regex.lazy(r"\n[ \t\f\r]*(?:&|(?:DEF|(END))DAT(?![A-Za-z0-9_$]))", re.I)
+_PROGRAM = regex.lazy(r"^[ \t\f\r]*DEF[ \t]", re.I | re.M)
 _STATEMENT_LINE = regex.lazy(r"\n[ \t\f\r]*[^ \t\f\r\n;&]")
 _IDENT = regex.lazy(r"[A-Za-z_$][\w$]*")
 _BRACED = regex.lazy(r"\{[^}\n]*\}?|\"[^\"\n]*\"?")
@@ -675,7 +676,7 @@ def _statements(tree, doc: Document, line_of=None):
                 s.index = [_int(doc, t) for t in ch[1].children]
             s.value = ch[-1]
             out.append(s)
-        elif d == "defdat":
+        elif d in ("defdat", "program"):
             out.extend(_statements(st, doc, line_of))
     return out
 
@@ -693,6 +694,10 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     """Parse a KRL data list into frames, lints and tables. ``full``
     (``check``): every byte through the grammar first."""
     text = _lines(doc)
+    if _PROGRAM.search(text):
+        # a program (.src): short, and its layout is not a data list's,
+        # which the fast path's masking knows
+        return _whole(doc, text)
     if full:
         try:
             _recognise(text)

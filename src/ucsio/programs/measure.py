@@ -1,7 +1,8 @@
-"""``ucsio program --measure PLAN.csv CONTROLLER --frame NAME --tool NAME
--o OUT``: the robot's measurement program, in the controller's language.
+"""The robot's measurement program, in the controller's language (``ucsio
+program --measure PLAN.csv CONTROLLER --frame NAME --tool NAME -o OUT``,
+``demo --out``, ``api.measurement_program``).
 
-The generic part: read the plan (``plan.read_plan``) and the controller,
+The generic part: read the plan (``readers.plan.read_plan``) and the controller,
 find the frame and the tool, compute each planned point's pose of the
 written tool in the frame (and its approach pose), and hand them to the
 vendor's ``measurement_program``. The position written is the plan's
@@ -35,7 +36,7 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                          file=cf.path)
     vendors.program_vendor(output, cf.vendor)     # -o names another vendor's program: refused
     user = find_frame(cf, frame)
-    # fixed in robot world: on the robot's base, or (ABB's work objects) on the world
+    # fixed in robot world: on the robot's base, or (ABB's work objects, a KUKA base) on the world
     _check_parent(user, ("robot", "world"), f"--frame {frame}", "a user frame")
     held, offset = _tool(cf, tool, tcp)
     planned, warnings = _plan(plan)
@@ -49,27 +50,43 @@ def make(plan, controller, frame: str, *, tool=None, tcp=None, approach: float =
                         os.path.basename(os.fspath(plan)), _program_name(output))
     result = writer.measurement_program(user, held, targets, settings)
     result.warnings = warnings + list(result.warnings)
+    _check_suffix(result, output)
     result.read_back = _read_back(result, cf, held, offset, tcp, output)
     return result
 
 
+def _check_suffix(result, output) -> None:
+    """A program of several files (KUKA's .src and .dat) is named by its
+    main file: -o must end as that file does, so the others go beside it."""
+    if result.suffix is None or not output or output == "-":
+        return
+    if os.path.splitext(output)[1].lower() != result.suffix:
+        others = ", ".join(s for s, _ in result.companions)
+        raise UcsioError(f"-o {output}: a {result.vendor.upper()} measurement program is "
+                         f"NAME{result.suffix} with its {others} beside it: -o "
+                         f"NAME{result.suffix}")
+
+
 def _read_back(result, cf, held, offset, tcp, output) -> dict:
-    """How ``solve`` reads the program back as the robot side: ``config``,
-    the files that hold its frames (the tool's, then the controller's); the
-    names its positions are taught with where the vendor asks (ABB's
-    ``robot_tool`` and ``robot_wobj``); the reflector (``tool`` FILE:NAME or
-    ``tcp`` x,y,z); and ``solve``, the command line with them."""
+    """How ``solve`` reads the program back as the robot side: ``robot``,
+    the file it reads (KUKA's .dat); ``config``, the files that hold its
+    frames (the tool's, then the controller's); the names its positions are
+    taught with where the vendor asks (ABB's ``robot_tool`` and
+    ``robot_wobj``); the reflector (``tool`` FILE:NAME or ``tcp`` x,y,z); and
+    ``solve``, the command line with them."""
     import shlex
+    robot = output if output not in (None, "-") else "PROGRAM" + (result.suffix or "")
+    if result.robot_suffix is not None:
+        robot = beside(robot, result.robot_suffix)
     config = [f for f in dict.fromkeys([held.file if held is not None else None, cf.path]) if f]
     reflector = ({"tool": f"{held.file}:{held.name}"} if held is not None else
                  {"tcp": ",".join(f"{v:g}" for v in offset)})
-    words = ["ucsio", "solve", "--laser", "TRACKER.csv", "--robot",
-             output if output not in (None, "-") else "PROGRAM"]
+    words = ["ucsio", "solve", "--laser", "TRACKER.csv", "--robot", robot]
     for f in config:
         words += ["--config", f]
     for key, value in {**result.robot_side, **reflector}.items():
         words += ["--" + key.replace("_", "-"), value]
-    return {"config": config, **result.robot_side, **reflector,
+    return {"robot": robot, "config": config, **result.robot_side, **reflector,
             "solve": " ".join(shlex.quote(w) for w in words)}
 
 
@@ -87,7 +104,7 @@ def _check_settings(approach: float, speed: float, dwell) -> None:
 
 
 def _plan(plan):
-    from .plan import read_plan
+    from ..readers.plan import read_plan
     planned, warnings = read_plan(plan, joint=False)
     if not len(planned.names):
         raise UcsioError("the plan has no points", file=os.fspath(plan))
@@ -102,7 +119,7 @@ def _tool(cf, tool, tcp):
         raise UcsioError("give the reflector's tool: --tool NAME (a tool of the controller) or "
                          "--tcp X,Y,Z (the flange's positions are written)")
     if tcp is not None:
-        from .solve import parse_tcp
+        from ..readers.options import parse_tcp
         return None, tuple(parse_tcp(tcp) if isinstance(tcp, str) else tcp)
     file, sep, name = tool.rpartition(":")
     if sep and file and os.path.exists(file):
@@ -165,7 +182,7 @@ def _spread(rotations, spread, planned):
 def _three(value, option: str) -> list[float]:
     """Three finite numbers: "A,B,C" from the command line, a sequence from
     Python."""
-    from .patch import parse_values
+    from ..readers.options import parse_values
     text = value if isinstance(value, str) else ",".join(str(float(v)) for v in value)
     return parse_values(text, 3, option)
 
@@ -206,24 +223,47 @@ def _program_name(output) -> str:
 
 
 def files_of(result, path: str) -> list[str]:
-    """The names of the files a program is written as at ``path``: the one
-    file (a vendor whose program is a pair says so by ``result.files``)."""
-    files = getattr(result, "files", None)
-    if not files:
-        return [os.path.basename(path)]
-    stem = os.path.splitext(os.path.basename(path))[0]
-    return [stem + suffix for suffix, _ in files]
+    """The names of the files a program is written as at ``path``: its own,
+    and its companions' beside it (KUKA's .dat)."""
+    return [os.path.basename(path)] + [os.path.basename(beside(path, suffix))
+                                       for suffix, _ in result.companions]
 
 
 def save(result, path: str) -> str:
-    """Write the program; an existing file is never replaced."""
+    """Write the program, its companions first (KUKA's .dat before its
+    .src), each atomically; no file is ever replaced: all are written or,
+    should one fail, none stays (those already written are removed)."""
     from ..files import atomic_write
+    files = [(beside(path, suffix), text.encode("ascii")) for suffix, text in result.companions]
+    files.append((path, result.data))
 
-    def refuse_existing():
-        if os.path.lexists(path):
-            raise UcsioError("exists: a measurement program is never written over a file; "
-                             "choose another -o", file=path)
-    refuse_existing()
-    written, _ = atomic_write(path, result.data, check=refuse_existing)
-    result.written = written
-    return written
+    def refuse_existing(names):
+        for name in names:
+            if os.path.lexists(name):
+                raise UcsioError("exists: a measurement program is never written over a "
+                                 "file; choose another -o", file=name)
+    names = [name for name, _ in files]
+    refuse_existing(names)
+    done: list[str] = []
+    try:
+        for k, (name, data) in enumerate(files):
+            # just before each rename: this file and those still to come are free
+            written, _ = atomic_write(name, data, check=lambda: refuse_existing(names[k:]))
+            done.append(written)
+    except BaseException:
+        for name in done:
+            try:
+                os.unlink(name)
+            except OSError:
+                pass
+        raise
+    result.written = done[-1]
+    texts = [result.text] + [t for _, t in result.companions]
+    result.files = list(zip([done[-1]] + done[:-1], texts))
+    return done[-1]
+
+
+def beside(path: str, suffix: str) -> str:
+    """``path`` with ``suffix`` for its own, in its case (M.SRC: M.DAT)."""
+    stem, own = os.path.splitext(path)
+    return stem + (suffix.upper() if own.isupper() else suffix)
