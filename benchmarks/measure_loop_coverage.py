@@ -62,12 +62,22 @@ def tracker(cell: Path, flanges: dict, tcp, true, rng) -> Path:
     return laser
 
 
+def made(argv: list[str]) -> dict:
+    """``program --measure --json``'s read_back: how solve reads the program."""
+    import contextlib
+    import io
+    import json
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        assert main(argv) == 0
+    return json.loads(buffer.getvalue())["measurement_program"]["read_back"]
+
+
 def fixed_loop(vendor: str, trials: int, seed: int) -> tuple[int, int]:
     cell = cell_folder()
     controller, frame, tool, name, frame_values, tool_values, config, names = \
         fixed.LOOPS[vendor]
     controller = controller.format(cell=cell)
-    config = config.format(cell=cell) if isinstance(config, str) else config
     tool_spec = tool if ":" in tool else f"{controller}:{tool}"
     points = {names.format(k=k): xyz for k, xyz in enumerate(joint.POINTS)}
     plan = cell / "loop.csv"
@@ -75,10 +85,13 @@ def fixed_loop(vendor: str, trials: int, seed: int) -> tuple[int, int]:
                     "".join(f"{n},{x},{y},{z}\n" for n, (x, y, z) in points.items()))
     at_95 = api.plan(plan, at=cell / "at.csv", tool=tool_spec, sigma_laser=SIGMA_LASER,
                      sigma_robot=SIGMA_ROBOT).as_dict()["working_points"][0]["at_95"]
-    out = cell / name
-    assert main(["program", "--measure", str(plan), controller, "--frame", frame, "--tool",
-                 tool, "-o", str(out)]) == 0
-    robot = read_robot(out, config=config)
+    side = made(["program", "--measure", str(plan), controller, "--frame", frame, "--tool",
+                 tool, "-o", str(cell / name), "--json"])
+    out = side["robot"]                    # as the program says solve reads it
+    options = {"robot_tool": side.get("robot_tool", "tool0"),
+               "robot_wobj": side.get("robot_wobj", "wobj0")}
+    robot = read_robot(out, config=side["config"], tool=options["robot_tool"],
+                       wobj=options["robot_wobj"])
     by_point = {p.point: p.flange for p in robot.poses}
     flanges = {n: by_point[n] for n in points}
     true = fixed.matrix(*frame_values) @ fixed.matrix(*TRUE_OFFSET)
@@ -86,8 +99,8 @@ def fixed_loop(vendor: str, trials: int, seed: int) -> tuple[int, int]:
     within = 0
     for _ in range(trials):
         laser = tracker(cell, flanges, tool_values[:3], true, rng)
-        got = api.solve(laser=laser, robot=out, config=config, tool=tool_spec,
-                        no_exclusion=True).as_dict()
+        got = api.solve(laser=laser, robot=out, config=side["config"], tool=side["tool"],
+                        no_exclusion=True, **options).as_dict()
         measured = np.asarray(got["frame"]["matrix"])
         within += np.linalg.norm((measured @ WORK - true @ WORK)[:3]) <= at_95
     return within, trials

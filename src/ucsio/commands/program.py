@@ -1,5 +1,6 @@
 """Write a program that sets a measured frame on the controller: a FANUC
-TP program (-o OUT.LS) or a Yaskawa job (-o SETUF2.JBI). -o's suffix picks
+TP program (-o OUT.LS) or a Yaskawa job (-o SETUF2.JBI); or, with
+--measure, the robot's measurement program (below). -o's suffix picks
 the vendor (--vendor NAME where it does not; FANUC where neither says).
 
 SOLUTION.json is what `ucsio solve -o` wrote (- reads standard input).
@@ -44,9 +45,14 @@ without a program writer.
 OUT writes the measurement program instead: the reflector moved to each
 point of the plan in the controller's frame NAME, approach and retract
 --approach MM along --approach-dir (the frame's +Z), linear moves at
---speed MM/S, a stop (or --dwell S) at each point (programs.measure).
-An existing -o is never replaced. KUKA's is two files: -o NAME.src and
-NAME.dat beside it, both written or neither."""
+--speed MM/S, a stop (or --dwell S) at each point; the plan's orientations,
+else --orientation, else the tool down the frame's -Z; --spread DEG turns
+the tool point by point for a TCP solved with the frame (plan --tcp solve
+says how much). ABB writes a module (-o NAME.mod), FANUC a TP program
+(.LS), Yaskawa a job (.JBI), KUKA two files: -o NAME.src and NAME.dat
+beside it, both written or neither. An existing file is never replaced.
+The program is read back before it is written; the summary's second line
+is the solve command that reads it as the robot side (--json: read_back)."""
 from __future__ import annotations
 
 import sys
