@@ -364,3 +364,42 @@ def test_groups_cite_the_study_and_the_noise_check_is_said_once():
     folded = page.split('<details class="note" id="correlation-details">', 1)[1]
     assert 'id="correlation"' in folded.split("</details>", 1)[0]
     assert "not how far" in folded
+
+
+def test_station_views_draw_every_frame_where_it_moved(report):
+    """issue 29 point 2: one picture per station, from above: every entry
+    with a simulated frame at its nominal origin, its measured origin at the
+    nominal plus the diff's shift times the stated factor (the SVG's own
+    coordinates checked against the JSON), coloured by its group."""
+    from ucsio.fleet.report import GROUP_COLORS, station_of
+    path, doc = report
+    tags = _parse(path).tags
+    views = {a["data-station"]: a for t, a in tags if t == "svg" and "data-factor" in a}
+    entries = [e for e in doc["entries"] if e.get("simulated")]
+    assert set(views) == {station_of(e) for e in entries}
+    frames, measured = [], []
+    svg = None
+    for t, a in tags:
+        if t == "svg":
+            svg = a if "data-factor" in a else None
+        elif svg is not None and t == "g" and a.get("class") == "frame":
+            frames.append((svg, a))
+        elif svg is not None and t == "circle" and a.get("class") == "measured":
+            measured.append(a)
+    assert len(frames) == len(entries)
+    by_name = {e["name"]: e for e in entries}
+    moved = [(s, a) for s, a in frames if a["data-dx"] != ""]
+    assert len(moved) == len(measured) == sum(bool(e.get("accepted")) for e in entries)
+    for (s, a), dot in zip(moved, measured):
+        e = by_name[a["data-name"]]
+        assert station_of(e) == s["data-station"]
+        scale, factor = float(s["data-scale"]), float(s["data-factor"])
+        cx, cy = float(s["data-cx"]), float(s["data-cy"])
+        px = 210 + (e["simulated"]["x"] - cx) * scale
+        py = 138 - (e["simulated"]["y"] - cy) * scale
+        assert float(dot["cx"]) == pytest.approx(px + e["diff"]["dx"] * factor * scale, abs=0.06)
+        assert float(dot["cy"]) == pytest.approx(py - e["diff"]["dy"] * factor * scale, abs=0.06)
+        assert dot["fill"] == GROUP_COLORS[e["group"] - 1]
+    # a rejected entry shows where it should be, not a shift it does not have
+    assert all(not by_name[a["data-name"]].get("accepted") for s, a in frames
+               if a["data-dx"] == "")

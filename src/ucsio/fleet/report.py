@@ -659,11 +659,7 @@ def _stations(entries: list[dict]) -> str:
     entries, how many passed, the worst dt_mean, the mean e."""
     by: dict[str, list[dict]] = {}
     for e in entries:
-        st = e.get("station")
-        if not isinstance(st, str) or not st:
-            c = e.get("controller")
-            st = os.path.basename(os.path.dirname(c)) if isinstance(c, str) else ""
-        by.setdefault(st or "\u2013", []).append(e)
+        by.setdefault(station_of(e), []).append(e)
     points = any(isinstance(e.get("points_moved"), dict) for e in entries)
     head = ('<table id="stations"><tr><th>station</th><th class="n">entries</th>'
             '<th class="n">passed</th><th class="n">over tolerance</th><th class="n">rejected</th>'
@@ -691,6 +687,128 @@ def _stations(entries: list[dict]) -> str:
             + (f'<td class="n">{_f(max(moved) if moved else None)}</td>' if points else "")
             + "</tr>")
     return head + "".join(rows) + "</table>"
+
+
+def station_of(e: dict) -> str:
+    """An entry's station: its ``station``, else its controller's folder."""
+    st = e.get("station")
+    if not isinstance(st, str) or not st:
+        c = e.get("controller")
+        st = os.path.basename(os.path.dirname(c)) if isinstance(c, str) else ""
+    return st or "\u2013"
+
+
+def _nice(v: float) -> float:
+    """The 1-2-5 value at or below ``v`` (> 0)."""
+    k = 10.0 ** math.floor(math.log10(v))
+    return next(m * k for m in (5.0, 2.0, 1.0) if m * k <= v)
+
+
+def _axes_xy(q: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """A frame's x and y axes (unit quaternion w, x, y, z) seen from above."""
+    if not isinstance(q, (list, tuple)) or len(q) != 4 or any(_num(v) is None for v in q):
+        return None
+    w, x, y, z = (float(v) for v in q)
+    return ((1 - 2 * (y * y + z * z), 2 * (x * y + w * z)),
+            (2 * (x * y - w * z), 1 - 2 * (x * x + z * z)))
+
+
+def station_svg(name: str, entries: Sequence[dict]) -> str:
+    """One station from above (robot world, x right, y up): each frame's
+    nominal origin (a ring, its x and y axes red and green) and its measured
+    one (a dot in its group's colour, at the nominal plus the measured shift
+    magnified by a stated factor, an arrow between); rejected and failed
+    entries a ring alone. Scale bar in mm; numbers for machines in
+    ``data-*`` attributes."""
+    rows = []
+    for e in entries:
+        sim = _dict(e.get("simulated"))
+        x, y = _num(sim.get("x")), _num(sim.get("y"))
+        if x is None or y is None:
+            continue
+        d = _dict(e.get("diff")) if e.get("accepted") else {}
+        dx, dy = _num(d.get("dx")), _num(d.get("dy"))
+        rows.append((e, x, y, dx, dy, _axes_xy(sim.get("q"))))
+    if not rows:
+        return ""
+    W, H, pad = 420, 300, 34
+    xs, ys = [r[1] for r in rows], [r[2] for r in rows]
+    span = max(max(xs) - min(xs), max(ys) - min(ys), 500.0)
+    cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
+    scale = min(W - 2 * pad, H - 2 * pad - 24) / span                 # px per mm
+
+    def P(x: float, y: float) -> tuple[float, float]:
+        return W / 2 + (x - cx) * scale, (H - 24) / 2 - (y - cy) * scale
+
+    shifts = [math.hypot(r[3], r[4]) for r in rows if r[3] is not None and r[4] is not None]
+    far = max(shifts, default=0.0)
+    factor = _nice(0.08 * span / far) if far > 0 else 1.0       # the largest shift ~8 % of the view
+    factor = max(factor, 1.0)
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" '
+           f'viewBox="0 0 {W} {H}" role="img" class="station-view" data-station="{_e(name)}" '
+           f'data-factor="{factor:g}" data-scale="{scale:.6g}" data-cx="{cx:.6g}" '
+           f'data-cy="{cy:.6g}" aria-label="station {_e(name)} from above: nominal and '
+           f'measured frames, shifts magnified {factor:g} times">']
+    for e, x, y, dx, dy, axes in rows:
+        px, py = P(x, y)
+        g = e.get("group") if isinstance(e.get("group"), int) else None
+        color = GROUP_COLORS[(g - 1) % len(GROUP_COLORS)] if g else "#8a949e"
+        out.append(f'<g class="frame" data-name="{_e(e.get("name"))}" data-x="{x:.6g}" '
+                   f'data-y="{y:.6g}" data-dx="{_attr(dx)}" data-dy="{_attr(dy)}" '
+                   f'data-group="{_attr(g)}">')
+        if axes is not None:
+            for (ax, ay), c in zip(axes, ("#c62828", "#2e7d32")):
+                out.append(f'<line x1="{px:.1f}" y1="{py:.1f}" x2="{px + 16 * ax:.1f}" '
+                           f'y2="{py - 16 * ay:.1f}" stroke="{c}" stroke-width="1.2"/>')
+        out.append(f'<circle cx="{px:.1f}" cy="{py:.1f}" r="5" fill="none" stroke="#5b6570"/>')
+        if dx is not None and dy is not None:
+            mx, my = px + dx * factor * scale, py - dy * factor * scale
+            out.append(f'<line class="shift" x1="{px:.1f}" y1="{py:.1f}" x2="{mx:.1f}" '
+                       f'y2="{my:.1f}" stroke="{color}" stroke-width="1.5"/>'
+                       f'<circle class="measured" cx="{mx:.1f}" cy="{my:.1f}" r="3.5" '
+                       f'fill="{color}"/>')
+        out.append(f'<text x="{px + 7:.1f}" y="{py + 14:.1f}" font-size="10">'
+                   f'{_e(_short(str(e.get("frame_name") or e.get("name") or "")))}</text></g>')
+    bar = _nice(span / 4)
+    mid = (H - 24) / 2
+    out.append(f'<line x1="{pad}" x2="{pad + bar * scale:.1f}" y1="{H - 12}" y2="{H - 12}" '
+               f'stroke="#1d2329" stroke-width="2"/><text x="{pad}" y="{H - 16}" '
+               f'font-size="11">{bar:g} mm</text>'
+               f'<text x="{W / 2:.0f}" y="{H - 4}" text-anchor="middle" font-size="11">x, mm '
+               f'(robot world)</text>'
+               f'<text x="12" y="{mid:.1f}" font-size="11" text-anchor="middle" '
+               f'transform="rotate(-90 12 {mid:.1f})">y, mm</text>'
+               f'<text x="{W - 6}" y="{H - 8}" text-anchor="end" font-size="11">shifts '
+               f'\u00d7 {factor:g}</text></svg>')
+    return "".join(out)
+
+
+def station_legend(factor: str) -> str:
+    return _legend([(_swatch("#5b6570", "outline"), "nominal origin (x axis red, y green)"),
+                    (_swatch(GROUP_COLORS[0]), "measured, coloured by group (as above)"),
+                    (_swatch("#1d2329", "line"), f"shift, drawn {factor} times its length")])
+
+
+def _station_views(entries: list[dict]) -> str:
+    """Every station's frames in one picture each, nominal beside measured,
+    coloured by group (folded, so that a fleet's report stays readable)."""
+    by: dict[str, list[dict]] = {}
+    for e in entries:
+        by.setdefault(station_of(e), []).append(e)
+    figures = []
+    for k, st in enumerate(sorted(by)):
+        svg = station_svg(st, by[st])
+        if svg:
+            factor = svg.split('data-factor="', 1)[1].split('"', 1)[0]
+            figures.append(f'<details class="station-view"><summary>{_e(st)}: '
+                           f'{len(by[st])} frame{"s" if len(by[st]) != 1 else ""} from above'
+                           f'</summary><figure class="chart small" id="station-{k}">{svg}'
+                           f'{station_legend(factor)}</figure></details>')
+    if not figures:
+        return ""
+    return ('<div id="station-views"><p class="note">Each station from above (robot world, '
+            'x to the right, y up), folded: the measured shift of every frame is drawn '
+            'magnified by the factor its picture states.</p>' + "".join(figures) + "</div>")
 
 
 def render_report(data: dict, title: str = "ucsio batch report",
@@ -749,6 +867,7 @@ def render_report(data: dict, title: str = "ucsio batch report",
 
     parts.append("<h2>By station</h2>")
     parts.append(_stations(entries))
+    parts.append(_station_views(entries))
 
     parts.append("<h2>Groups by dt_mean</h2>")
     parts.append(f'<p class="note" id="groups-source">{_e(GROUPS_SOURCE)}</p>')
