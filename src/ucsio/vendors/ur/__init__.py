@@ -30,7 +30,7 @@ class UniversalRobots(Defaults):
     # -- orientation and numbers ------------------------------------------------------
     # The file holds rotation vectors (radians); ucsio shows PolyScope's other
     # form, roll, pitch, yaw in degrees: R = Rz(yaw)·Ry(pitch)·Rx(roll), SPEC's
-    # c, b, a (the rotation vector in degrees is each frame's ``rotvec``)
+    # c, b, a (frames --json also gives the quaternion q)
     angles = AngleColumns(("roll", "pitch", "yaw"), "cba")
     native_deltas = (("droll", "dc"), ("dpitch", "db"), ("dyaw", "da"))
 

@@ -209,8 +209,6 @@ def _safety_features(root: Element, doc: Document) -> set[str]:
 def _frame(doc: Document, element: Element, type_: str, numbers: dict, pose: Pose,
            reference: str, parent, info: dict) -> Frame:
     name = unescape(element.get("name") or "")
-    a, b, c = (math.degrees(v) for v in rot.quat_to_rotvec(pose.q))
-    info["rotvec"] = [a + 0.0, b + 0.0, c + 0.0]     # PolyScope's rx, ry, rz, in degrees
     return Frame(name, VENDOR, type_, pose, doc.path, doc.line_of(element.start),
                  reference=reference, numbers=numbers, info=info, document=doc, parent=parent)
 
