@@ -115,7 +115,7 @@ def _attributes(doc: Document, m) -> dict:
         group = "dq" if a.group("dq") is not None else "sq"
         if a.group("name") in attrs:
             raise doc.error(f"malformed XML: attribute {a.group('name')} given twice",
-                            start + a.start())
+                            start + a.start("name"))
         attrs[a.group("name")] = (a.group(group), start + a.start(group))
         pos = a.end()
     if text[pos:].strip():
@@ -180,6 +180,8 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     scan checks every tag either way."""
     cf = ControllerFile(doc, VENDOR)
     root = scan(doc)
+    if doc.gzip is not None and doc.gzip.refusal is not None:
+        cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
     cf.extra["safety_features"] = _safety_features(root, doc)
     for element in _walk(root):
         if element.tag == "tcp" and element.parent is not None \
