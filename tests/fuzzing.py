@@ -413,6 +413,9 @@ def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
     from ucsio import vendors
     from ucsio.parsing.controller import load
 
+    if name.lower().endswith(".installation"):
+        _taught_poses_oracle(name, raw, doc, fast)
+        return
     if not name.lower().endswith(".jbi"):
         return
     vendor = vendors.get("yaskawa")
@@ -433,6 +436,33 @@ def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
     rows = [p for p in fast.extra["positions"] if p.kind in ("C", "P")]
     if len(got.poses) != len(rows):
         raise Finding(f"solve --robot: {len(got.poses)} positions, check reads {len(rows)}")
+    for rp in got.poses:
+        if rp.problem is not None:
+            _sane_error(doc, rp.problem, f"solve --robot {rp.name}")
+        elif not all(math.isfinite(v) for row in rp.flange for v in row):
+            raise Finding(f"solve --robot {rp.name}: a flange pose that is not finite")
+
+
+def _taught_poses_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
+    """solve --robot's reader of a Universal Robots installation: refuses
+    exactly what check refuses, else each taught pose a finite flange pose
+    or a clean problem."""
+    from ucsio import vendors
+    from ucsio.parsing.controller import load
+
+    try:
+        got = _in_temp(name, raw, lambda path: vendors.get("ur").robot_positions(
+            path, config=None, tool="tool0", wobj="wobj0", load=load))
+    except UcsioError as exc:
+        _sane_error(doc, exc, "solve --robot")
+        if fast is not None and fast.vendor == "ur":
+            raise Finding(f"solve --robot refuses an installation check reads: {exc.message}"
+                          [:300]) from exc
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"solve --robot: {type(exc).__name__}: {exc}"[:300]) from exc
+    if fast is None:
+        raise Finding("solve --robot reads an installation check refuses")
     for rp in got.poses:
         if rp.problem is not None:
             _sane_error(doc, rp.problem, f"solve --robot {rp.name}")
