@@ -349,3 +349,35 @@ def test_diff_of_two_installations_and_of_folders(tmp_path, capsys):
     code, out, err = cli(capsys, "diff", "--textconv", b / "cell.installation")
     assert code == 0 and "Gripper TCP ref=flange x=0.0 y=0.0 z=0.152" in out
     assert '<tcp id="b5935d78' in out           # the XML itself, not gzip's bytes
+
+
+def test_solve_robot_recovers_a_ucs_from_taught_point_features(tmp_path, capsys):
+    """Synthetic truth: six point features taught with a 100 mm TCP at the
+    UCS's points, each in another orientation; solve --robot reads their
+    flange poses and, with --tcp 0,0,100, recovers the UCS."""
+    rng = np.random.default_rng(4)
+    ucs_r = Rotation.from_euler("xyz", [2.0, -3.0, 35.0], degrees=True)
+    ucs_t = np.array([620.0, -140.0, 85.0])
+    laser = rng.uniform(-300, 300, size=(6, 3)) * [1, 1, 0.2]
+    nodes, lines = [], []
+    for i, p in enumerate(laser, 1):
+        tcp_at = (ucs_r.apply(p) + ucs_t) / 1000.0
+        rv = (Rotation.from_rotvec([np.pi, 0, 0]) * Rotation.from_euler(
+            "xyz", rng.uniform(-25, 25, 3), degrees=True)).as_rotvec()
+        nodes.append(
+            f'    <GeomPoseNode>\n      <GeomPoseNode id="p{i}" name="M{i}" isVariable="false">\n'
+            f'        <toolPosition value="{", ".join(map(repr, tcp_at.tolist()))}"/>\n'
+            f'        <toolAxisAngle value="{", ".join(map(repr, rv.tolist()))}"/>\n'
+            '        <tcpOffset value="0.0, 0.0, 0.1, 0.0, 0.0, 0.0"/>\n'
+            '      </GeomPoseNode>\n    </GeomPoseNode>\n')
+        lines.append(f"M{i} " + " ".join(map(repr, p.tolist())))
+    xml = ur_cell.XML.replace("  </Features>", "".join(nodes) + "  </Features>")
+    (tmp_path / "m.installation").write_bytes(ur_cell.installation(xml))
+    (tmp_path / "laser.txt").write_text("\n".join(lines) + "\n")
+    code, out, err = cli(capsys, "solve", "--laser", tmp_path / "laser.txt", "--robot",
+                         tmp_path / "m.installation", "--tcp", "0,0,100", "--json")
+    assert code == 0, err
+    f = json.loads(out)["frame"]
+    np.testing.assert_allclose([f["x"], f["y"], f["z"]], ucs_t, atol=1e-6)
+    got = Rotation.from_quat(np.roll(f["q"], -1))
+    assert np.degrees((got.inv() * ucs_r).magnitude()) < 1e-7
