@@ -139,6 +139,17 @@ def test_bad_xml_is_one_error_at_its_line_and_column(tmp_path, capsys, edit, say
     assert code == 2 and path.read_bytes() == ur_cell.installation(xml)
 
 
+def test_xml_nested_deeper_than_pythons_stack_reads_or_fails_cleanly(tmp_path, capsys):
+    deep = "<a>" * 50_000 + "</a>" * 50_000
+    path = tmp_path / "cell.installation"
+    path.write_bytes(ur_cell.installation(ur_cell.XML.replace("<Features>", "<Features>" + deep)))
+    code, out, err = cli(capsys, "frames", path)
+    assert code == 0 and "Table" in out, err
+    path.write_bytes(ur_cell.installation(ur_cell.XML.replace("<Features>", "<Features>" + deep[:-4])))
+    code, out, err = cli(capsys, "check", path)
+    assert code == 2 and "</Features> where </a> belongs" in err, err
+
+
 # -- reading: units and conversions --------------------------------------------------------
 def test_rotation_vectors_against_scipy():
     """Both conversions on random vectors, tiny angles and angles near pi."""

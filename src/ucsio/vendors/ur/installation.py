@@ -183,7 +183,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     if doc.gzip is not None and doc.gzip.refusal is not None:
         cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
     cf.extra["safety_features"] = _safety_features(root, doc)
-    for element in _walk(root):
+    for element in walk(root):
         if element.tag == "tcp" and element.parent is not None \
                 and element.parent.tag == "availablePoses":
             cf.frames.append(_tcp(doc, element))
@@ -193,10 +193,14 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     return cf
 
 
-def _walk(element: Element):
-    for child in element.children:
+def walk(element: Element):
+    """Every element below ``element``, in document order; a loop, not
+    recursion: hostile XML may nest deeper than Python's stack."""
+    stack = list(reversed(element.children))
+    while stack:
+        child = stack.pop()
         yield child
-        yield from _walk(child)
+        stack.extend(reversed(child.children))
 
 
 def _safety_features(root: Element, doc: Document) -> set[str]:
@@ -225,9 +229,9 @@ def _feature(doc: Document, cf: ControllerFile, element: Element) -> Frame:
     if type_ == "POINT":
         numbers = point_numbers(doc, element)
     else:
-        numbers = point_numbers(doc, _point(doc, element, "firstPoint"))
+        numbers = point_numbers(doc, point_node(doc, element, "firstPoint"))
         for tag in PLANE_POINTS:
-            numbers.update(point_numbers(doc, _point(doc, element, tag), tag + "."))
+            numbers.update(point_numbers(doc, point_node(doc, element, tag), tag + "."))
     info = {"id": element.get("id")}
     if element.get("id") in cf.extra["safety_features"]:
         info["safety"] = True
@@ -237,7 +241,7 @@ def _feature(doc: Document, cf: ControllerFile, element: Element) -> Frame:
     return frame
 
 
-def _point(doc: Document, plane: Element, tag: str) -> Element:
+def point_node(doc: Document, plane: Element, tag: str) -> Element:
     holder = plane.child(tag)
     node = holder.child("GeomPoseNode") if holder is not None else None
     if node is None:

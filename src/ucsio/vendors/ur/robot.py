@@ -29,7 +29,7 @@ def read(vendor, path: str, config, tool: str, wobj: str, load) -> RobotPoses:
     doc = cf.document
     root = ins.scan(doc)
     poses = []
-    for element in ins._walk(root):
+    for element in ins.walk(root):
         if element.tag not in ins.FEATURES or element.get("name") is None \
                 or element.get("hiddenSubFeature") == "true":
             continue
@@ -38,7 +38,7 @@ def read(vendor, path: str, config, tool: str, wobj: str, load) -> RobotPoses:
             poses.append(_taught(doc, name, element))
         else:
             for i, tag in enumerate(ins.TAUGHT, 1):
-                node = ins._point(doc, element, tag)
+                node = ins.point_node(doc, element, tag)
                 poses.append(_taught(doc, f"{name}.{i}", node))
     return RobotPoses(path, vendor.name, poses, vendor.name)
 
