@@ -155,6 +155,22 @@ TRIVIA = [b" ", b"\t", b"\n", b"\r\n", b" ! note\n", b"!\n", b"; note\n", b"\n\n
 _WORD = [chr(c).isalnum() or chr(c) in "_.$" for c in range(256)]
 
 
+def mutate_inside_gzip(raw: bytes, ops: list[tuple[int, int, int]]) -> bytes:
+    """A gzip file (Universal Robots' .installation) with its content
+    mutated and deflated again as PolyScope does (zlib level 6, the header
+    kept): the XML's reader sees the mutation, not gzip's CRC check."""
+    import zlib
+    try:
+        body = zlib.decompress(raw, 31)
+    except zlib.error:
+        return mutate(raw, ops)
+    body = mutate(body, ops)
+    deflate = zlib.compressobj(6, zlib.DEFLATED, -15, 8, zlib.Z_DEFAULT_STRATEGY)
+    stream = deflate.compress(body) + deflate.flush()
+    return (raw[:10] + stream + zlib.crc32(body).to_bytes(4, "little")
+            + (len(body) & 0xFFFFFFFF).to_bytes(4, "little"))
+
+
 # ------------------------------------------------------------------ the oracle
 
 class Finding(AssertionError):
@@ -364,7 +380,16 @@ R05 = DEMO_DATA / "R05_yaskawa"
 def never_written(doc: Document, frame) -> None:
     """A patch that went through on what must never be written: a
     condition file with a ///CRC line anywhere (its checksum is not known),
-    or RBCALIB.DAT's calibration."""
+    RBCALIB.DAT's calibration, a Universal Robots feature a safety plane
+    names, a gzip stream this zlib does not reproduce."""
+    if frame.vendor == "ur":
+        if frame.info.get("safety"):
+            raise Finding(f"patch {frame.name}: a feature the safety configuration uses was "
+                          "written")
+        if doc.gzip is not None and doc.gzip.refusal is not None:
+            raise Finding(f"patch {frame.name}: a gzip stream zlib does not reproduce was "
+                          "written")
+        return
     if frame.vendor != "yaskawa":
         return
     if frame.type == "RBCALIB":
@@ -388,6 +413,9 @@ def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
     from ucsio import vendors
     from ucsio.parsing.controller import load
 
+    if name.lower().endswith(".installation"):
+        _taught_poses_oracle(name, raw, doc, fast)
+        return
     if not name.lower().endswith(".jbi"):
         return
     vendor = vendors.get("yaskawa")
@@ -408,6 +436,33 @@ def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
     rows = [p for p in fast.extra["positions"] if p.kind in ("C", "P")]
     if len(got.poses) != len(rows):
         raise Finding(f"solve --robot: {len(got.poses)} positions, check reads {len(rows)}")
+    for rp in got.poses:
+        if rp.problem is not None:
+            _sane_error(doc, rp.problem, f"solve --robot {rp.name}")
+        elif not all(math.isfinite(v) for row in rp.flange for v in row):
+            raise Finding(f"solve --robot {rp.name}: a flange pose that is not finite")
+
+
+def _taught_poses_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
+    """solve --robot's reader of a Universal Robots installation: refuses
+    exactly what check refuses, else each taught pose a finite flange pose
+    or a clean problem."""
+    from ucsio import vendors
+    from ucsio.parsing.controller import load
+
+    try:
+        got = _in_temp(name, raw, lambda path: vendors.get("ur").robot_positions(
+            path, config=None, tool="tool0", wobj="wobj0", load=load))
+    except UcsioError as exc:
+        _sane_error(doc, exc, "solve --robot")
+        if fast is not None and fast.vendor == "ur":
+            raise Finding(f"solve --robot refuses an installation check reads: {exc.message}"
+                          [:300]) from exc
+        return
+    except Exception as exc:  # noqa: BLE001
+        raise Finding(f"solve --robot: {type(exc).__name__}: {exc}"[:300]) from exc
+    if fast is None:
+        raise Finding("solve --robot reads an installation check refuses")
     for rp in got.poses:
         if rp.problem is not None:
             _sane_error(doc, rp.problem, f"solve --robot {rp.name}")

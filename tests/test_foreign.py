@@ -3,8 +3,9 @@
 - Another controller's file named on its own (Yaskawa's
   SYSTEM.SYS whose suffix is ABB's, a .CND other than UFRAME.CND and
   TOOL.CND, which ucsio reads (as it reads jobs, RBCALIB.DAT and VAR.DAT), a Stäubli
-  .dtx, a Universal Robots .installation) is refused with what it is, exit
-  2, never "syntax error at 1:1"; in a folder it is listed as not read.
+  .dtx, a Universal Robots program .urp: its .installation is read,
+  tests/test_ur.py) is refused with what it is, exit 2, never "syntax
+  error at 1:1"; in a folder it is listed as not read.
 - A FANUC backup's own .DAT files (ORDERFIL.DAT, UPDATES.DAT:
   fixtures/fanuc/backup_data, written in their style) are not KUKA data: in
   a folder with SYSFRAME.VA and .LS programs they are listed as not read,
@@ -25,7 +26,7 @@ DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
 # (Yaskawa's UFRAME.CND, TOOL.CND, jobs, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py)
-FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
+FOREIGN = sorted(p for vendor in ("yaskawa", "staubli") if (CORPUS / vendor).is_dir()
                  for p in (CORPUS / vendor).iterdir()
                  if p.suffix not in (".md", ".tsv")
                  and ".CND" not in p.name.upper() and ".JBI" not in p.name.upper()
@@ -35,7 +36,8 @@ FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendo
 NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "
                        "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI))",
             "staubli": "does not read Stäubli files yet",
-            "ur": "does not read Universal Robots files yet"}
+            "ur": "does not read this Universal Robots file yet (of Universal Robots's files it "
+                  "reads installations (.installation))"}
 
 
 def cli(capsys, *args):
@@ -135,3 +137,12 @@ def test_a_dat_is_decided_by_its_text_and_its_folder_not_its_suffix(tmp_path, ca
     shutil.copy(DATA / "ORDERFIL.DAT", alone / "ORDERFIL.DAT")
     code, out, err = cli(capsys, "frames", alone / "ORDERFIL.DAT")
     assert code == 2 and "FANUC" not in err and "syntax error" in err
+
+
+def test_a_universal_robots_program_is_refused_with_what_ucsio_reads_of_theirs(tmp_path, capsys):
+    """A .urp (gzip, as the .installation beside it) is a program: refused,
+    naming the installation as what ucsio reads."""
+    path = tmp_path / "weld.urp"
+    path.write_bytes(bytes.fromhex("1f8b0800000000000000") + b"\x03\x00" + bytes(8))
+    code, out, err = cli(capsys, "frames", path)
+    assert code == 2 and out == "" and NOT_READ["ur"] in err, err

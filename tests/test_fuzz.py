@@ -69,6 +69,20 @@ def test_mutated_yaskawa_jobs(seed, ops):
     fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
 
 
+UR_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".installation"]
+
+
+@settings(max_examples=60, **SETTINGS)
+@given(seed=st.sampled_from(UR_SEEDS), ops=ops, inside=st.booleans())
+def test_mutated_ur_installations(seed, ops, inside):
+    """Universal Robots installations: the XML mutated inside a valid gzip
+    stream (``inside``), or the gzip bytes themselves (a clear error); a
+    safety feature never written."""
+    raw = seed.read_bytes()
+    mutated = fuzzing.mutate_inside_gzip(raw, ops) if inside else fuzzing.mutate(raw, ops)
+    fuzzing.check_bytes(seed.name, mutated)
+
+
 # ------------------------------------------------------------------ generated modules
 
 # Trivia where RAPID allows it: nothing, blanks, line breaks of every kind,

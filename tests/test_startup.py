@@ -141,3 +141,32 @@ def test_a_yaskawa_job_is_read_light(tmp_path):
         out = subprocess.run([sys.executable, "-c", MODULES_PROBE, *map(str, args)],
                              capture_output=True, text=True, check=True).stdout.split()
         assert not set(out) & {"numpy", "scipy", "lark"}, (args, out)
+
+
+def test_a_universal_robots_installation_is_read_and_patched_light(tmp_path):
+    """frames, its tree, check, diff, textconv and patch (a plane, with its
+    points) of an .installation: none of numpy, scipy, lark nor the other
+    slow modules (but difflib for a diff of two files; a patch's diff and
+    its solution's json);
+    the gzip stream goes through zlib alone."""
+    import os
+    import shutil
+    path = tmp_path / "cell.installation"
+    shutil.copy(FIXTURES / "ur" / "cell.installation", path)
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps({"frame": {"x": 401, "y": -200, "z": 50, "a": 30, "b": 0,
+                                         "c": 0.1}}))
+    env = dict(os.environ, UCSIO_CACHE_DIR=str(tmp_path / "cache"))
+    subprocess.run([sys.executable, "-m", "ucsio", "check", path], env=env,
+                   capture_output=True, check=True)         # the first run builds the caches
+    probe_gzip = MODULES_PROBE.replace("%r)))" % (SLOW_TO_IMPORT,),
+                                       "%r)))" % (SLOW_TO_IMPORT + ("gzip",),))
+    for args in (["frames", path], ["frames", "--tree", path], ["check", path],
+                 ["diff", path, path], ["diff", "--textconv", path],
+                 ["patch", path, "--frame", "Table", "--measured", sol]):
+        res = subprocess.run([sys.executable, "-c", probe_gzip, *map(str, args)],
+                             capture_output=True, text=True, env=env, check=True)
+        # a patch reads its solution's JSON and shows its diff
+        allowed = (["difflib", "json"] if args[0] == "patch" else
+                   ["difflib"] if len(args) == 3 else [])
+        assert res.stdout.split() in ([], allowed), (args, res.stdout)

@@ -212,6 +212,29 @@ def quat_multiply(p: Quat, q: Quat) -> Quat:
     )
 
 
+def rotvec_to_quat(v) -> Quat:
+    """A rotation vector (radians: the axis times the angle, Universal
+    Robots' rx, ry, rz) as a unit quaternion; sin(θ/2)/θ by its series near
+    0, where the division loses digits."""
+    x, y, z = (float(c) for c in v)
+    theta = math.sqrt(x * x + y * y + z * z)
+    half = 0.5 * theta
+    k = 0.5 - theta * theta / 48.0 if theta < 1e-4 else math.sin(half) / theta
+    return (math.cos(half), x * k, y * k, z * k)
+
+
+def quat_to_rotvec(q: Quat) -> tuple[float, float, float]:
+    """The rotation vector (radians) of a quaternion: angle in [0, π], the
+    angle from atan2 (accurate near 0 and π, unlike acos)."""
+    w, x, y, z = quat_normalize(q)
+    if w < 0.0:
+        w, x, y, z = -w, -x, -y, -z
+    s = math.sqrt(x * x + y * y + z * z)
+    theta = 2.0 * math.atan2(s, w)
+    k = theta / s if s > 0.0 else 2.0     # atan2 keeps theta / s accurate for a small s
+    return (x * k + 0.0, y * k + 0.0, z * k + 0.0)
+
+
 def quat_angle(p: Quat, q: Quat) -> float:
     """Degrees of the single rotation taking orientation p to q."""
     pw, px, py, pz = quat_normalize(p)

@@ -54,9 +54,15 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
     FANUC sysframe.va takes its frames' comments from them); False for a
     file that stands alone (git's textconv hands over a temporary copy)."""
     _refuse_foreign(doc, beside)
-    if looks_binary(doc.raw):
+    if doc.gzip_error is not None:
+        raise UcsioError(f"{doc.gzip_error}: refusing to read or patch it", file=doc.path,
+                         line=1, col=1)
+    if looks_binary(doc.body):
         raise _binary_error(doc)
     vendor = vendors.get(vendors.detect(doc))
+    if doc.gzip is not None and not vendor.gzip:
+        # only a vendor whose files come compressed reads through gzip
+        raise _binary_error(doc)
     # The trees and frames of a file hold no reference cycles; the cyclic
     # collector's passes over their growing heap made a long file's
     # reading grow faster than the file (tests: benchmarks/bench_linear.py).
@@ -76,9 +82,13 @@ def _binary_error(doc: Document) -> UcsioError:
     if doc.raw.startswith((b"\xff\xfe", b"\xfe\xff")):
         return UcsioError("UTF-16 text: ucsio reads controller files as UTF-8 or Windows-1252; "
                           "save it as UTF-8", file=doc.path)
-    at = first_binary_byte(doc.raw)
-    before = doc.raw[len(BOM) if doc.bom else 0:at].decode(doc.encoding)
-    return doc.error(f"binary or encrypted file (byte 0x{doc.raw[at]:02x} here): refusing to "
+    if doc.gzip is not None and not looks_binary(doc.body):
+        return UcsioError(f"a gzip-compressed {vendors.title(vendors.detect(doc))} file: its "
+                          "files are not read through gzip (decompress it)", file=doc.path,
+                          line=1, col=1)
+    at = first_binary_byte(doc.body)
+    before = doc.body[len(BOM) if doc.bom else 0:at].decode(doc.encoding)
+    return doc.error(f"binary or encrypted file (byte 0x{doc.body[at]:02x} here): refusing to "
                      "read or patch it", len(before))
 
 

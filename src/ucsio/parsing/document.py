@@ -9,7 +9,10 @@ objects only point into them).
 Encoding: a UTF-8 BOM or valid UTF-8 is read as UTF-8; anything else as
 Latin-1. Latin-1 maps every byte to one character and back, so Windows-1252
 files (KUKA umlauts, Spanish comments) round-trip byte for byte even where
-cp1252 leaves a byte undefined. Line endings are never translated: the text
+cp1252 leaves a byte undefined. A gzip file (Universal Robots'
+``.installation``) is read through its stream: the text is what it holds,
+and writing deflates it again (``Gzip``: bit for bit where this Python's
+zlib reproduces the stream, else refused). Line endings are never translated: the text
 keeps CR, LF, CRLF and ABB's CR CR LF exactly as they were; lines are counted
 by one rule for every language (``line_starts``).
 """
@@ -52,6 +55,16 @@ class Document:
     def __init__(self, raw: bytes, path: str | os.PathLike | None = None):
         self.path = str(path) if path is not None else "<memory>"
         self.raw = raw
+        # a gzip stream's text is what it holds (``Gzip``); a broken one is
+        # read as the bytes it is, and parse says why (``gzip_error``)
+        self.gzip: Gzip | None = None
+        self.gzip_error: str | None = None
+        if raw.startswith(GZIP_MAGIC):
+            try:
+                self.gzip, raw = Gzip.open(raw)
+            except ValueError as exc:
+                self.gzip_error = str(exc)
+        self.body = raw             # the bytes the text decodes: the file's, or its stream's
         self.bom = raw.startswith(BOM)
         body = raw[len(BOM):] if self.bom else raw
         try:
@@ -119,9 +132,18 @@ class Document:
         except UnicodeEncodeError as exc:
             raise UcsioError(f"cannot write {text[exc.start:exc.end]!r} in {self.encoding}",
                              file=self.path) from None
-        return BOM + body if self.bom else body
+        body = BOM + body if self.bom else body
+        if self.gzip is not None:
+            if self.gzip.refusal is not None:
+                raise UcsioError(self.gzip.refusal, file=self.path)
+            return self.gzip.wrap(body)
+        return body
 
     def to_bytes(self) -> bytes:
+        """The bytes of the unedited text: the file's own (a gzip stream this
+        Python cannot reproduce: the file's, though no edit is written)."""
+        if self.gzip is not None and self.gzip.refusal is not None:
+            return self.raw
         return self.encode(self.text)
 
     def apply(self, edits: list[Edit]) -> str:
@@ -140,6 +162,75 @@ class Document:
     def edited_bytes(self, edits: list[Edit]) -> bytes:
         return self.encode(self.apply(edits))
 
+
+GZIP_MAGIC = b"\x1f\x8b\x08"      # gzip's two bytes and its one method, deflate
+
+
+class Gzip:
+    """A gzip file's framing: its header kept as it is, its stream deflated
+    again at zlib's level 6 (memLevel 8, the default strategy), with the
+    trailer's CRC-32 and length. ``refusal``: why this file cannot be
+    written, where deflating its own text does not give its own bytes (an
+    other deflater, another zlib, a second member or bytes after the
+    stream): it is read, never written."""
+
+    __slots__ = ("header", "refusal")
+
+    def __init__(self, header: bytes):
+        self.header, self.refusal = header, None
+
+    @classmethod
+    def open(cls, raw: bytes) -> tuple["Gzip", bytes]:
+        """(the framing, the bytes the stream holds); ValueError where the
+        stream is broken (truncated, a bad CRC)."""
+        import zlib
+        start = _gzip_header_end(raw)
+        inflate = zlib.decompressobj(-zlib.MAX_WBITS)
+        try:
+            body = inflate.decompress(raw[start:])
+        except zlib.error as exc:
+            raise ValueError(f"a gzip stream that does not decompress ({exc})") from None
+        rest = inflate.unused_data
+        if not inflate.eof or len(rest) < 8:
+            raise ValueError("a gzip stream cut short (no end of stream or no trailer)")
+        if int.from_bytes(rest[:4], "little") != zlib.crc32(body) or \
+                int.from_bytes(rest[4:8], "little") != len(body) & 0xFFFFFFFF:
+            raise ValueError("a gzip stream whose CRC-32 or length does not match what it holds")
+        gz = cls(raw[:start])
+        if gz.wrap(body) != raw:
+            gz.refusal = (f"this gzip stream is not what zlib {zlib.ZLIB_RUNTIME_VERSION} "
+                          "writes at level 6 (another deflater, or bytes after the stream): "
+                          "ucsio reads it but does not write it, nothing written")
+        return gz, body
+
+    def wrap(self, body: bytes) -> bytes:
+        import zlib
+        deflate = zlib.compressobj(6, zlib.DEFLATED, -zlib.MAX_WBITS, 8, zlib.Z_DEFAULT_STRATEGY)
+        stream = deflate.compress(body) + deflate.flush()
+        return (self.header + stream + zlib.crc32(body).to_bytes(4, "little")
+                + (len(body) & 0xFFFFFFFF).to_bytes(4, "little"))
+
+
+def _gzip_header_end(raw: bytes) -> int:
+    """Where a gzip header (RFC 1952) ends: ten bytes, then what its flags name."""
+    if len(raw) < 10:
+        raise ValueError("a gzip header cut short")
+    flags, pos = raw[3], 10
+    if flags & 0xE0:
+        raise ValueError(f"a gzip header with reserved flags set (0x{flags:02x})")
+    if flags & 4:                   # FEXTRA: its length, then that many bytes
+        pos += 2 + int.from_bytes(raw[pos:pos + 2], "little")
+    for flag in (8, 16):            # FNAME, FCOMMENT: zero-terminated
+        if flags & flag:
+            end = raw.find(b"\0", pos)
+            if end < 0:
+                raise ValueError("a gzip header cut short")
+            pos = end + 1
+    if flags & 2:                   # FHCRC
+        pos += 2
+    if pos > len(raw):
+        raise ValueError("a gzip header cut short")
+    return pos
 
 
 # A run of CRs and the LF after it is one line ending (CRLF, ABB's CR CR LF);

@@ -6,8 +6,8 @@ Two kinds:
   (the ``.CND`` condition files other than UFRAME.CND and
   TOOL.CND, and the ``SYSTEM.SYS`` of its backups, whose suffix is
   ABB's: its first line decides), Stäubli VAL3
-  (``.dtx``/``.pgx``/``.pjx``), Universal Robots (``.urp``,
-  ``.installation``);
+  (``.dtx``/``.pgx``/``.pjx``), Universal Robots' programs (``.urp``;
+  its ``.installation`` is read by ucsio.vendors.ur);
 - a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
   a ``.dat`` is KUKA data by its suffix only where its text or its folder
   does not say otherwise. A folder holding ``SYSFRAME.VA`` and ``.LS``
@@ -34,10 +34,11 @@ KNOWN = (
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",),
      r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b|RBCALIB\b|VAR\b)[A-Z]+"),
     ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
-    ("a Universal Robots file", "Universal Robots", (".urp", ".installation"), None),
+    ("a Universal Robots file", "Universal Robots", (".urp",), None),
 )
 # what ucsio reads of a vendor's files, where it reads some: the refusal says so
-READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI)"}
+READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI)",
+         "Universal Robots": "installations (.installation)"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else
 _KRL = regex.lazy(r"(?im)^[ \t]*(?:&(?:ACCESS|REL|PARAM|COMMENT)\b|(?:GLOBAL[ \t]+)?DEFDAT\b)")

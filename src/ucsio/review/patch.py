@@ -150,7 +150,7 @@ def patch_frame(cf: ControllerFile, name: str, pose: Pose, *, measured: bool = T
 def robot_held_tool(frame: Frame) -> bool:
     """A TCP in flange coordinates lives here: an ABB tooldata with robhold
     TRUE, a KUKA TOOL_DATA used as a tool (not a robot-guided workpiece)."""
-    return (frame.type in ("tooldata", "TOOL_DATA", "UTOOL", "TOOL")
+    return (frame.type in ("tooldata", "TOOL_DATA", "UTOOL", "TOOL", "TCP")
             and frame.reference == "flange"
             and frame.info.get("robhold") is not False
             and frame.info.get("role", "tool") == "tool")

@@ -61,6 +61,7 @@ VENDORS = (
     # first line); what ucsio does not read yet is refused by parsing.foreign
     Entry("yaskawa", "Yaskawa", (".cnd", ".jbi"), (".cnd", ".jbi"), "ucsio.vendors.yaskawa", (),
           heads=("//RBCALIB", "//VAR"), programs=(".jbi",)),
+    Entry("ur", "Universal Robots", (".installation",), (".installation",), "ucsio.vendors.ur", (), heads=("<Installation",)),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
@@ -84,6 +85,7 @@ class Defaults:
         return None
 
     measurement_columns = None
+    gzip = False            # whether its files are read through gzip (parsing.document.Gzip)
     robot_suffixes: tuple[str, ...] = ()
     robot_positions = None
     robot_configs = 1       # how many --config files its positions take (more: a tuple)

@@ -30,6 +30,8 @@ class Vendor(Protocol):
     def binary_refusal(self, path: str) -> str | None:
         """Why a binary file of this vendor is not read, where ``path`` is one."""
 
+    gzip: bool                  # whether its files are read through gzip (Universal Robots')
+
     # Orientation: how its angles are named and written (or its quaternion), and its
     # orientation columns in SPEC's measurement CSV (None: the CSV has none of its own).
     angles: AngleColumns

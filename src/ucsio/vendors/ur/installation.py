@@ -1,0 +1,299 @@
+"""Universal Robots installation files (``.installation``, PolyScope 5):
+gzip around XML (../shared/corpus/ur/README.md). The document layer reads
+the gzip stream (``parsing.document.Gzip``); this module reads its XML.
+
+What ucsio takes from it, each value an attribute's number as a span of
+the XML, so a patch replaces exactly it:
+
+- TCPs: ``<TCPSettings><availablePoses><tcp name=".." offset="x, y, z, rx,
+  ry, rz"/>``, metres and a rotation vector in radians, in the flange;
+- features, in the robot base: ``<GeomPoseNode name="..">`` points (their
+  ``toolPosition`` metres, ``toolAxisAngle`` a rotation vector) and
+  ``<GeomPlaneNode name="..">`` planes, whose frame is their derived
+  ``firstPoint``; their taught points (``userFirstPoint`` ... ) and the
+  other derived points (``secondPoint``: the origin plus 1 m along y,
+  ``thirdPoint``) are numbers of the same frame, written together.
+
+The XML is scanned, not parsed into objects ucsio writes back: tags with
+their attributes, checked for nesting, every other character kept. The
+safety settings' ``sourceFeatureId`` lines name the features the safety
+configuration uses.
+"""
+from __future__ import annotations
+
+import math
+
+from ...geometry import rotations as rot
+from ...geometry.frames import Frame, Number, Pose, flange, robot
+from ...parsing import regex
+from ...parsing.document import Document, Span
+from ...parsing.model import ControllerFile
+
+VENDOR = "ur"
+COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
+# a plane's points beside its frame (firstPoint): derived, then taught
+PLANE_POINTS = ("secondPoint", "thirdPoint", "userFirstPoint", "userSecondPoint",
+                "userThirdPoint")
+TAUGHT = ("userFirstPoint", "userSecondPoint", "userThirdPoint")
+FEATURES = {"GeomPoseNode": "POINT", "GeomPlaneNode": "PLANE"}
+
+_MARKUP = regex.lazy(
+    r"<(?:!--.*?-->|\?.*?\?>|!\[CDATA\[.*?\]\]>|!DOCTYPE[^>]*>"
+    r"|(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
+    r"(?P<attrs>(?:[^<>\"'/]|\"[^\"<]*\"|'[^'<]*'|/(?!>))*+)(?P<empty>/)?>)", 16)   # re.S
+_ATTR = regex.lazy(r"\s+(?P<name>[A-Za-z_][\w.:-]*)\s*=\s*(?:\"(?P<dq>[^\"<]*)\"|'(?P<sq>[^'<]*)')")
+_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_SOURCE_FEATURE = regex.lazy(r"(?m)^[ \t]*sourceFeatureId[ \t]*=[ \t]*(?P<id>[^\s]+)")
+_ENTITIES = {"&lt;": "<", "&gt;": ">", "&amp;": "&", "&quot;": '"', "&apos;": "'"}
+
+
+class Element:
+    """One XML element: its tag, its attributes (name -> (value, offset of
+    the value's first character)), where its start tag stands, its children."""
+
+    __slots__ = ("tag", "attrs", "start", "children", "parent")
+
+    def __init__(self, tag: str, attrs: dict, start: int, parent: "Element | None"):
+        self.tag, self.attrs, self.start, self.parent = tag, attrs, start, parent
+        self.children: list[Element] = []
+
+    def get(self, name: str) -> str | None:
+        got = self.attrs.get(name)
+        return None if got is None else got[0]
+
+    def child(self, tag: str) -> "Element | None":
+        return next((c for c in self.children if c.tag == tag), None)
+
+
+def sniff(doc: Document) -> bool:
+    """An installation's root element, after an XML declaration if any."""
+    head = doc.text[:256].lstrip("\ufeff \t\r\n")
+    if head.startswith("<?xml"):
+        head = head[head.find("?>") + 2:].lstrip()
+    return head.startswith("<Installation") and head[13:14] in (" ", ">", "/", "\t", "\n", "\r")
+
+
+def scan(doc: Document) -> Element:
+    """The element tree of the XML; an error at the first tag out of place."""
+    text = doc.text
+    root = Element("", {}, 0, None)
+    top = root
+    pos = text.find("<")
+    while pos >= 0:
+        m = _MARKUP.match(text, pos)
+        if m is None:
+            raise doc.error("malformed XML: a '<' that begins no tag, comment or declaration",
+                            pos)
+        tag = m.group("tag")
+        if tag is not None:
+            if m.group("close"):
+                if top is root or top.tag != tag:
+                    want = f"</{top.tag}>" if top is not root else "no end tag"
+                    raise doc.error(f"malformed XML: </{tag}> where {want} belongs", pos)
+                top = top.parent
+            else:
+                element = Element(tag, _attributes(doc, m), pos, top)
+                top.children.append(element)
+                if not m.group("empty"):
+                    top = element
+        pos = text.find("<", m.end())
+    if top is not root:
+        raise doc.error(f"malformed XML: <{top.tag}> is never closed", top.start)
+    if len(root.children) != 1 or root.children[0].tag != "Installation":
+        raise doc.error("not a Universal Robots installation: its root element is not "
+                        "<Installation>", root.children[0].start if root.children else 0)
+    return root.children[0]
+
+
+def _attributes(doc: Document, m) -> dict:
+    attrs: dict[str, tuple[str, int]] = {}
+    text, start = m.group("attrs"), m.start("attrs")
+    pos = 0
+    for a in _ATTR.finditer(text):
+        if text[pos:a.start()].strip():
+            break
+        group = "dq" if a.group("dq") is not None else "sq"
+        if a.group("name") in attrs:
+            raise doc.error(f"malformed XML: attribute {a.group('name')} given twice",
+                            start + a.start("name"))
+        attrs[a.group("name")] = (a.group(group), start + a.start(group))
+        pos = a.end()
+    if text[pos:].strip():
+        raise doc.error("malformed XML: an attribute that is not name=\"value\"",
+                        start + pos + len(text[pos:]) - len(text[pos:].lstrip()))
+    return attrs
+
+
+def unescape(value: str) -> str:
+    if "&" not in value:
+        return value
+    for entity, char in _ENTITIES.items():
+        value = value.replace(entity, char)
+    return value
+
+
+def numbers_of(doc: Document, element: Element, attr: str, keys: tuple[str, ...],
+               prefix: str = "") -> dict[str, Number]:
+    """The comma-separated numbers of ``element``'s ``attr`` as Numbers,
+    one per key; an error at the attribute where they are not so many
+    finite numbers."""
+    got = element.attrs.get(attr)
+    if got is None:
+        raise doc.error(f"<{element.tag}> without its {attr} attribute", element.start)
+    value, at = got
+    out: dict[str, Number] = {}
+    parts = value.split(",")
+    if len(parts) != len(keys):
+        raise doc.error(f"{attr}: {len(keys)} numbers expected, {len(parts)} found", at)
+    offset = at
+    for key, part in zip(keys, parts):
+        lead = len(part) - len(part.lstrip())
+        body = part.strip()
+        m = _NUMBER.fullmatch(body)
+        if m is None or not math.isfinite(float(body)):
+            raise doc.error(f"{attr}: {body!r} is not a finite number", offset + lead)
+        start = offset + lead
+        out[prefix + key] = Number(Span(start, start + len(body)), body, float(body))
+        offset += len(part) + 1
+    return out
+
+
+def pose_of(numbers: dict[str, Number], prefix: str = "") -> Pose:
+    """Metres and a rotation vector (radians) as ucsio's pose: mm, a quaternion."""
+    x, y, z, rx, ry, rz = (numbers[prefix + k].value for k in COMPONENTS)
+    return Pose.from_quat(x * 1000.0, y * 1000.0, z * 1000.0, rot.rotvec_to_quat((rx, ry, rz)))
+
+
+def point_numbers(doc: Document, node: Element, prefix: str = "") -> dict[str, Number]:
+    """A GeomPoseNode's toolPosition and toolAxisAngle, keyed x ... rz."""
+    out = {}
+    for attr_tag, keys in (("toolPosition", COMPONENTS[:3]), ("toolAxisAngle", COMPONENTS[3:])):
+        child = node.child(attr_tag)
+        if child is None:
+            raise doc.error(f"<{node.tag}> without <{attr_tag}>", node.start)
+        out.update(numbers_of(doc, child, "value", keys, prefix))
+    return out
+
+
+def parse(doc: Document, full: bool = False) -> ControllerFile:
+    """An installation's TCPs and features. ``full`` reads the same: the
+    scan checks every tag either way."""
+    cf = ControllerFile(doc, VENDOR)
+    root = scan(doc)
+    if doc.gzip is not None and doc.gzip.refusal is not None:
+        cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
+    cf.extra["safety_features"] = _safety_features(root, doc)
+    for element in walk(root):
+        if element.tag == "tcp" and element.parent is not None \
+                and element.parent.tag == "availablePoses":
+            cf.frames.append(_tcp(doc, element))
+        elif element.tag in FEATURES and element.get("name") is not None \
+                and element.get("hiddenSubFeature") != "true":
+            cf.frames.append(_feature(doc, cf, element))
+    return cf
+
+
+def walk(element: Element):
+    """Every element below ``element``, in document order; a loop, not
+    recursion: hostile XML may nest deeper than Python's stack."""
+    stack = list(reversed(element.children))
+    while stack:
+        child = stack.pop()
+        yield child
+        stack.extend(reversed(child.children))
+
+
+def _safety_features(root: Element, doc: Document) -> set[str]:
+    """The feature ids the safety settings' planes name (``sourceFeatureId``)."""
+    safety = root.child("SafetySettings")
+    if safety is None:
+        return set()
+    end = doc.text.find("</SafetySettings>", safety.start)
+    return {m.group("id") for m in _SOURCE_FEATURE.finditer(doc.text, safety.start, end)}
+
+
+def _frame(doc: Document, element: Element, type_: str, numbers: dict, pose: Pose,
+           reference: str, parent, info: dict) -> Frame:
+    name = unescape(element.get("name") or "")
+    return Frame(name, VENDOR, type_, pose, doc.path, doc.line_of(element.start),
+                 reference=reference, numbers=numbers, info=info, document=doc, parent=parent)
+
+
+def _tcp(doc: Document, element: Element) -> Frame:
+    numbers = numbers_of(doc, element, "offset", COMPONENTS)
+    return _frame(doc, element, "TCP", numbers, pose_of(numbers), "flange", flange(), {})
+
+
+def _feature(doc: Document, cf: ControllerFile, element: Element) -> Frame:
+    type_ = FEATURES[element.tag]
+    if type_ == "POINT":
+        numbers = point_numbers(doc, element)
+    else:
+        numbers = point_numbers(doc, point_node(doc, element, "firstPoint"))
+        for tag in PLANE_POINTS:
+            numbers.update(point_numbers(doc, point_node(doc, element, tag), tag + "."))
+    info = {"id": element.get("id")}
+    if element.get("id") in cf.extra["safety_features"]:
+        info["safety"] = True
+    frame = _frame(doc, element, type_, numbers, pose_of(numbers), "world", robot(), info)
+    if type_ == "PLANE":
+        _check_plane(cf, frame, element)
+    return frame
+
+
+def point_node(doc: Document, plane: Element, tag: str) -> Element:
+    holder = plane.child(tag)
+    node = holder.child("GeomPoseNode") if holder is not None else None
+    if node is None:
+        raise doc.error(f"plane {plane.get('name')!r} without its <{tag}> point", plane.start)
+    return node
+
+
+def taught_positions(frame: Frame) -> list[tuple[float, float, float]]:
+    """A plane's three taught points (mm, robot base)."""
+    return [tuple(frame.numbers[f"{tag}.{k}"].value * 1000.0 for k in "xyz")
+            for tag in TAUGHT]
+
+
+def construct(org, xx, xy) -> Pose | None:
+    """The 3-point construction (origin, +X, XY): x along ORG->XX, z = x ×
+    (XY - ORG), y = z × x; None where the points are (nearly) collinear."""
+    x = _sub(xx, org)
+    z = _cross(x, _sub(xy, org))
+    nx, nz = _norm(x), _norm(z)
+    if nx == 0.0 or nz <= 1e-9 * nx * max(_norm(_sub(xy, org)), 1e-300):
+        return None
+    x = [c / nx for c in x]
+    z = [c / nz for c in z]
+    y = _cross(z, x)
+    m = ((x[0], y[0], z[0]), (x[1], y[1], z[1]), (x[2], y[2], z[2]))
+    return Pose.from_matrix(m, org)
+
+
+def _check_plane(cf: ControllerFile, frame: Frame, element: Element) -> None:
+    """The plane's frame (firstPoint) is the 3-point construction of its
+    taught points: a lint where it is not (a file edited by hand, a frame
+    written without its points)."""
+    built = construct(*taught_positions(frame))
+    if built is None:
+        cf.lint(element.start, "plane-points", f"plane {frame.name}: its taught points are "
+                "collinear: they define no frame")
+        return
+    moved = max(abs(a - b) for a, b in zip(built.t, frame.pose.t))
+    turned = rot.quat_angle(built.q, frame.pose.q)
+    if moved > 1e-3 or turned > 1e-4:
+        cf.lint(element.start, "plane-points",
+                f"plane {frame.name}: its frame (firstPoint) is {moved:.3f} mm and "
+                f"{turned:.4f} deg from the 3-point construction of its taught points")
+
+
+def _sub(a, b):
+    return [p - q for p, q in zip(a, b)]
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _norm(v) -> float:
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
