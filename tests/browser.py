@@ -230,3 +230,64 @@ class Browser:
                           clip={"x": 0, "y": 0, "width": w, "height": h, "scale": 1})
         data = self.call("Page.captureScreenshot", **params)["data"]
         Path(path).write_bytes(base64.b64decode(data))
+
+
+def read_png(path: str | os.PathLike) -> tuple[int, int, int, bytes]:
+    """(width, height, channels, pixel bytes) of an 8-bit RGB or RGBA PNG, as
+    Chromium's screenshots are: enough to count pixels without Pillow."""
+    import zlib
+    data = Path(path).read_bytes()
+    pos, idat = 8, b""
+    while pos < len(data):
+        n, kind = struct.unpack("!I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour = struct.unpack("!IIBB", body[:10])
+            if depth != 8 or colour not in (2, 6):
+                raise ValueError("only 8-bit RGB or RGBA PNGs")
+            ch = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride = zlib.decompress(idat), w * ch
+    out, prev = bytearray(), bytearray(stride)
+    for y in range(h):
+        f, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = row[i - ch] if i >= ch else 0
+            b, c = prev[i], prev[i - ch] if i >= ch else 0
+            if f == 1:
+                row[i] = (row[i] + a) & 255
+            elif f == 2:
+                row[i] = (row[i] + b) & 255
+            elif f == 3:
+                row[i] = (row[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        out += row
+        prev = row
+    return w, h, ch, bytes(out)
+
+
+def blobs(png: str | os.PathLike, rgb: tuple[int, int, int], clip: dict | None = None) -> int:
+    """How many separate patches of exactly colour ``rgb`` a screenshot shows
+    (4-connected), inside ``clip`` (x, y, width, height) where given."""
+    w, h, ch, px = read_png(png)
+    x0, y0 = (int(clip["x"]), int(clip["y"])) if clip else (0, 0)
+    x1, y1 = ((x0 + int(clip["width"]), y0 + int(clip["height"])) if clip else (w, h))
+    want = bytes(rgb)
+    hits = {(x, y) for y in range(y0, min(y1, h)) for x in range(x0, min(x1, w))
+            if px[(y * w + x) * ch:(y * w + x) * ch + 3] == want}
+    count = 0
+    while hits:
+        count += 1
+        stack = [hits.pop()]
+        while stack:
+            x, y = stack.pop()
+            for n in ((x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)):
+                if n in hits:
+                    hits.remove(n)
+                    stack.append(n)
+    return count

@@ -144,7 +144,7 @@ width:8px;height:8px}.sw-residual{background:#ff7f0e;height:3px}
 .sw-excluded{border:2px solid #000;border-radius:50%;background:#e6007e}
 .sw-measured{background:linear-gradient(90deg,#d62728 33%,#2ca02c 33% 66%,#1f77b4 66%);height:3px}
 .sw-simulated{background:repeating-linear-gradient(90deg,#888 0 4px,#fff 4px 7px);height:3px}
-.working{background:linear-gradient(90deg,#2ca02c,#d62728)}.planned{background:#17becf;
+.sw-working{background:linear-gradient(90deg,#2ca02c,#d62728)}.sw-planned{background:#17becf;
 transform:rotate(45deg)}.sw-add{background:#2ca02c;transform:rotate(45deg)}
 .sw-drop{border:2px dashed #d62728}
 .proj{display:inline-block;margin:0 12px 12px 0}.proj svg{border:1px solid #ccc}
