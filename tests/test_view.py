@@ -179,3 +179,11 @@ def test_the_library_is_inlined_and_pinned(case, tmp_path):
     html = out.read_text()
     assert f"three.js {three_version()}" in html and "var THREE=" in html
     assert not re.search(r'<script[^>]+src=|<link[^>]+href=|https?://(?!www\.w3\.org)', html)
+
+
+def test_the_api_gives_the_scene_and_writes_the_page(case, tmp_path):
+    from ucsio import api
+    out = tmp_path / "v.html"
+    s = api.view(case["solution"], controller=case["config"], frame="BASE_DATA[3]", output=out)
+    assert scene_of(out.read_text()) == json.loads(json.dumps(s))
+    assert s["delta"]["dist"] > 0 and len(s["points"]) == 10
