@@ -187,3 +187,30 @@ def test_the_api_gives_the_scene_and_writes_the_page(case, tmp_path):
     s = api.view(case["solution"], controller=case["config"], frame="BASE_DATA[3]", output=out)
     assert scene_of(out.read_text()) == json.loads(json.dumps(s))
     assert s["delta"]["dist"] > 0 and len(s["points"]) == 10
+
+
+def test_a_solved_tcp_gives_the_robot_points_it_found(tmp_path):
+    """solve --tcp solve: each robot point is its flange pose applied to the
+    solved TCP (scipy's rotation of the CSV's KUKA A, B, C)."""
+    from conftest import FIXTURES
+    meas = FIXTURES / "measurements" / "kuka_base3.csv"
+    sol = tmp_path / "sol.json"
+    run("solve", meas, "--tcp", "solve", "-o", sol)
+    data = json.loads(sol.read_text())
+    tcp = np.array([data["tcp"][k] for k in "xyz"])
+    rows = np.genfromtxt(meas, delimiter=",", comments="#", skip_header=9)
+    for p, row in zip(data["points"], rows):
+        flange = Rotation.from_euler("ZYX", row[7:10], degrees=True).as_matrix()
+        assert np.allclose(p["robot"], flange @ tcp + row[4:7], atol=1e-9)
+        assert np.allclose(p["laser"], row[1:4], atol=1e-12)
+
+
+def test_working_points_without_a_covariance_are_drawn_unknown(case, tmp_path):
+    data = json.loads(case["solution"].read_text())
+    del data["covariance"]
+    sol = tmp_path / "sol.json"
+    sol.write_text(json.dumps(data))
+    out = tmp_path / "v.html"
+    code, _, err = run("view", sol, "--at", case["working"], "-o", out)
+    assert code == 0, err
+    assert all(w["at_95"] is None for w in scene_of(out.read_text())["working"])

@@ -98,6 +98,26 @@ def test_hover_tells_a_points_numbers(opened):
     assert text.startswith("P6 (excluded") and f"{p6['residual']:.3f}" in text
 
 
+def test_rotate_zoom_and_reset(opened):
+    """A drag turns the camera, the wheel zooms (the scale bar follows), reset
+    comes back to the first view."""
+    b = opened[0]
+    state = ("JSON.stringify([ucsioView.camera.position.toArray().map(v => v.toFixed(3)), "
+             "ucsioView.camera.zoom, document.getElementById('scale-text').textContent])")
+    first = b.evaluate(state)
+    b.evaluate("""(() => { const c = document.querySelector('#view3d canvas');
+        const r = c.getBoundingClientRect(), x = r.left + 200, y = r.top + 200;
+        c.dispatchEvent(new PointerEvent('pointerdown', {clientX: x, clientY: y, bubbles: true}));
+        window.dispatchEvent(new PointerEvent('pointermove', {clientX: x + 80, clientY: y + 30}));
+        window.dispatchEvent(new PointerEvent('pointerup', {clientX: x + 80, clientY: y + 30}));
+        c.dispatchEvent(new WheelEvent('wheel', {deltaY: -1500, bubbles: true, cancelable: true}));
+    })()""")
+    turned = json.loads(b.evaluate(state))
+    assert turned[0] != json.loads(first)[0] and turned[1] > 4 and turned[2] != json.loads(first)[2]
+    b.evaluate("document.getElementById('reset').click()")
+    assert b.evaluate(state) == first
+
+
 def test_each_projection_has_one_circle_per_point(opened):
     b, _, sol, _ = opened
     counts = b.evaluate("[...document.querySelectorAll('#static svg')].map(s => "

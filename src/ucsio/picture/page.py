@@ -53,7 +53,9 @@ def write_library(folder: str, name: str = "three.js") -> str:
 
 def _json_block(data) -> str:
     import json
-    text = json.dumps(data, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+
+    from ..output import _clean
+    text = json.dumps(_clean(data), ensure_ascii=False, allow_nan=False, separators=(",", ":"))
     return text.replace("<", "\\u003c")            # no </script> or <!-- inside the block
 
 
