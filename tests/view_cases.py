@@ -34,6 +34,7 @@ def robot_of(laser, truth=TRUTH):
 def write_case(folder, kind: str = "clean"):
     """MEAS.csv, SOLUTION.json, $config.dat (the simulated frame) and
     working.csv in ``folder`` for one case; returns their paths."""
+    folder.mkdir(parents=True, exist_ok=True)
     laser = list(LASER)
     if kind == "one-sided":
         laser = [(x * 0.2, y * 0.2, z * 0.2) for x, y, z in LASER]

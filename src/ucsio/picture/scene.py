@@ -160,10 +160,24 @@ def scene(solution: dict, *, simulated: dict | None = None, working: list | None
             xyz.append(s["plan"]["add"]["at"])
     center, size = _extent(xyz)
     s.update(center=center, size=size, magnify=magnification(points, size),
-             axis_length=nice(0.2 * size), scale_bar=nice(0.25 * size))
+             axis_length=nice(0.35 * size), scale_bar=nice(0.25 * size),
+             marker=marker_radius([p["tracker"] for p in points], size))
     for p in points:
         p["drawn"], p["clipped"] = drawn(p["d"], s["magnify"], 0.4 * size)
     return s
+
+
+def marker_radius(xyz: list[list[float]], size: float) -> float:
+    """A point's marker radius (mm): a small part of the scene, and small
+    enough that the two closest points stay apart (points bunched in a
+    corner of a large scene). Up to 200 points are compared pairwise."""
+    r = 0.012 * size
+    if len(xyz) <= 200:
+        closest = min((math.dist(a, b) for i, a in enumerate(xyz) for b in xyz[i + 1:]),
+                      default=math.inf)
+        if closest > 0:
+            r = min(r, 0.25 * closest)
+    return r
 
 
 def drawn(d: list[float], magnify: float, longest: float) -> tuple[list[float], bool]:

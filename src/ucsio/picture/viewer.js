@@ -3,7 +3,7 @@
 (function () {
 "use strict";
 const S = JSON.parse(document.getElementById("ucsio-scene").textContent);
-const C = S.center, R = S.size * 0.012;
+const C = S.center, R = S.marker, RW = S.size * 0.012;   // points; working and plan marks
 const MARK = 0xe6007e, ROBOT = 0x555555, RESID = 0xff7f0e;
 const AXES = [0xd62728, 0x2ca02c, 0x1f77b4];
 const el = document.getElementById("view3d"), labelsEl = document.getElementById("labels");
@@ -90,7 +90,7 @@ robot ${xyz(p.robot)}`;
 // frames: X red, Y green, Z blue; the simulated one dashed, Δ between the origins
 function frame(f, dashed, name) {
   f.axes.forEach((a, k) => line(f.origin, plus(f.origin, a, S.axis_length), AXES[k], dashed));
-  label(plus(f.origin, f.axes[2], S.axis_length), name);
+  label(plus(f.origin, f.axes[0], S.axis_length), name);     // at X: frames turned about Z part there
 }
 frame(S.measured, false, "measured");
 if (S.simulated) {
@@ -107,7 +107,7 @@ const top = errs.length ? Math.max(...errs) : 1, low = errs.length ? Math.min(..
 for (const w of S.working) {
   const f = (w.at_95 === null || top === low) ? 1 : (w.at_95 - low) / (top - low);
   const colour = new THREE.Color().setRGB(0.17 + 0.67 * f, 0.63 - 0.48 * f, 0.17 - 0.01 * f);
-  pick(box(w.at, R * 1.4, colour), "working", w.name,
+  pick(box(w.at, RW * 1.4, colour), "working", w.name,
        `${w.name}: predicted 95 % error ${fmt(w.at_95)} mm\nat ${xyz(w.at)}`);
   if (w.worst) label(w.at, `worst: ${w.name} ${fmt(w.at_95)} mm (95 %)`, "worst");
 }
@@ -115,12 +115,12 @@ for (const w of S.working) {
 // a plan: planned points, the suggested point, the point it would drop
 if (S.plan) {
   for (const p of S.plan.points) {
-    pick(diamond(p.at, R * 1.2, 0x17becf), "planned", p.name, `planned ${p.name}\n${xyz(p.at)}`);
+    pick(diamond(p.at, RW * 1.2, 0x17becf), "planned", p.name, `planned ${p.name}\n${xyz(p.at)}`);
     if (p.name === S.plan.drop) label(p.at, `drop ${p.name}`, "excluded");
   }
   if (S.plan.add) {
     const a = S.plan.add;
-    pick(diamond(a.at, R * 1.6, 0x2ca02c), "add", a.name,
+    pick(diamond(a.at, RW * 1.6, 0x2ca02c), "add", a.name,
          `add ${a.name}: worst after ${fmt(a.worst_after)} mm\n${xyz(a.at)}`);
     label(a.at, `add ${a.name}`);
   }
