@@ -7,6 +7,7 @@ as it is), take screenshots.
     with Browser(width=1280, height=800) as b:
         b.load(path)
         b.errors          # console errors, exceptions, CSP violations
+        b.requests        # every URL the page asked for, the page itself first
         b.evaluate("document.title")
         b.screenshot(png_path)
 """
@@ -113,6 +114,7 @@ class Browser:
         if self.executable is None:
             raise FileNotFoundError("no Chromium found (" + ", ".join(CANDIDATES) + ")")
         self.errors: list[str] = []
+        self.requests: list[str] = []
         self._id = 0
 
     def __enter__(self) -> "Browser":
@@ -134,7 +136,7 @@ class Browser:
             time.sleep(0.05)
         port = int(port_file.read_text().splitlines()[0])
         self.ws = self._page_socket(port)
-        for domain in ("Page", "Runtime", "Log"):
+        for domain in ("Page", "Runtime", "Log", "Network"):
             self.call(f"{domain}.enable")
         self.call("Emulation.setDeviceMetricsOverride", width=self.width, height=self.height,
                   deviceScaleFactor=1, mobile=False)
@@ -171,7 +173,9 @@ class Browser:
     # -- protocol --
     def _event(self, msg: dict) -> None:
         method, p = msg.get("method"), msg.get("params", {})
-        if method == "Runtime.exceptionThrown":
+        if method == "Network.requestWillBeSent":
+            self.requests.append(p.get("request", {}).get("url", ""))
+        elif method == "Runtime.exceptionThrown":
             d = p.get("exceptionDetails", {})
             self.errors.append("exception: " + str(d.get("exception", {}).get("description")
                                                    or d.get("text")))
@@ -226,3 +230,4 @@ class Browser:
                           clip={"x": 0, "y": 0, "width": w, "height": h, "scale": 1})
         data = self.call("Page.captureScreenshot", **params)["data"]
         Path(path).write_bytes(base64.b64decode(data))
+

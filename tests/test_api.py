@@ -241,6 +241,7 @@ COMMAND_FUNCTIONS = {           # the command, its work, the api function
     "batch": ("ucsio.commands.batch", "batch", "batch"),
     "plan": ("ucsio.commands.plan", "plan_measurement", "plan"),
     "program": ("ucsio.commands.program", "make", "program"),
+    "view": ("ucsio.commands.view", "view", "view"),
 }
 CLI_ONLY = {"json", "output", "no_progress", "command", "_module", "help"}
 

@@ -435,6 +435,25 @@ def plan(plan: PathLike, *, at: Any = None, at_taught: PathLike | None = None,
     return _document(PlanResult, doc)
 
 
+def view(solution: PathLike, *, controller: PathLike | None = None, frame: str | None = None,
+         at: PathLike | None = None, plan: PathLike | None = None,
+         output: PathLike | None = None) -> dict[str, Any]:
+    """``ucsio view``: the picture of a SOLUTION.json as its scene (the numbers
+    the page draws: ``points``, ``measured``, ``simulated`` with ``delta``
+    where ``controller`` and ``frame`` name the simulated frame, ``working``
+    from ``at``, ``plan`` from a ``plan --json`` file, ``magnify``); with
+    ``output``, the self-contained HTML page written there (atomically)."""
+    from .commands import view as command
+    scene, html = command.view(os.fspath(solution),
+                               controller=None if controller is None else os.fspath(controller),
+                               frame=frame, at=None if at is None else os.fspath(at),
+                               plan=None if plan is None else os.fspath(plan))
+    if output is not None:
+        from .files import atomic_write_text
+        atomic_write_text(output, html)
+    return scene
+
+
 def textconv(file: PathLike | ControllerFile) -> str:
     """One stable line per frame, then the file's text (``ucsio diff --textconv``)."""
     from .review.compare import textconv as _textconv
@@ -452,4 +471,4 @@ def demo(out: PathLike | None = None, tolerance: float | None = None) -> DemoRes
 __all__ = ["load", "frame", "frames", "check", "solve", "save_solution", "read_solution",
            "as_pose", "diff_frame", "taught_points", "diff_files", "diff_backups", "patch",
            "program", "measurement_program",
-           "save", "batch", "plan", "textconv", "demo", "PatchResult"]
+           "save", "batch", "plan", "view", "textconv", "demo", "PatchResult"]

@@ -60,6 +60,7 @@ COMMANDS = {
                "or with --measure the measurement program",
     "batch": "solve and diff many datasets from a TOML manifest",
     "plan": "plan a measurement: the predicted error where the robot works, what to change",
+    "view": "a self-contained HTML page: the solution's points, residuals and frames in 3D",
     "demo": "the whole job on shipped example cells",
 }
 

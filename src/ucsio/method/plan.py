@@ -237,7 +237,11 @@ def plan(planned: Planned, *, joint: bool = False, at=None, candidates=None,
             xyz, q = m.c, math.inf
         rows, worst = working.describe([f"reach {reach:g} mm"], [xyz], [q])
         rows[0]["reach"] = float(reach)
+    # the planned points' places beside their names: what `ucsio view` draws
+    places = [{"name": name, "x": x, "y": y, "z": z}
+              for name, (x, y, z) in zip(planned.names, np.asarray(planned.laser).tolist())]
     out: dict[str, Any] = {"planned": n, "points": list(planned.names), "sigma": sigma,
+                           "planned_points": places,
                            "threshold": float(threshold), "reach": float(reach),
                            "working_points": rows, "worst": worst}
     fails = []

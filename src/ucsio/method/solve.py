@@ -53,12 +53,17 @@ class PointResult:
     excluded_by: str | None  # 'auto' | 'hand' | None
     weight: float = 1.0
     line: int | None = None
+    laser: list[float] | None = None   # the point in the UCS, mm (what the tracker measured)
+    robot: list[float] | None = None   # the reflector in robot world (flange pose · TCP), mm
 
     def as_dict(self) -> dict[str, Any]:
-        return {"name": self.name, "residual": self.residual,
-                "loo_residual": None if not math.isfinite(self.loo_residual) else self.loo_residual,
-                "used": self.used, "dx": self.dx, "dy": self.dy, "dz": self.dz,
-                "excluded_by": self.excluded_by, "weight": self.weight, "line": self.line}
+        d = {"name": self.name, "residual": self.residual,
+             "loo_residual": None if not math.isfinite(self.loo_residual) else self.loo_residual,
+             "used": self.used, "dx": self.dx, "dy": self.dy, "dz": self.dz,
+             "excluded_by": self.excluded_by, "weight": self.weight, "line": self.line}
+        if self.laser is not None:      # the point pair itself: what `ucsio view` draws
+            d["laser"], d["robot"] = self.laser, self.robot
+        return d
 
 
 @dataclass
@@ -488,11 +493,13 @@ def _solve_many(data: Sequence[Dataset]) -> list:
         # calls were a large part of batch's bookkeeping at 10,000 datasets
         lines = d.lines if d.lines is not None else [None] * len(d.names)
         points = [PointResult(name=name, residual=r, loo_residual=lo, used=us,
-                              dx=dv[0], dy=dv[1], dz=dv[2], excluded_by=ex, weight=w, line=ln)
-                  for name, r, lo, us, dv, ex, w, ln in zip(
+                              dx=dv[0], dy=dv[1], dz=dv[2], excluded_by=ex, weight=w, line=ln,
+                              laser=la, robot=ro)
+                  for name, r, lo, us, dv, ex, w, ln, la, ro in zip(
                       d.names, resid.tolist(), np.where(u, loo, resid).tolist(), u.tolist(),
                       dvec.tolist(), excluded_by[i], np.asarray(d.weights, float).tolist(),
-                      lines)]
+                      lines, np.asarray(d.laser, float).tolist(),
+                      np.asarray(d.robot, float).tolist())]
         results[i] = Solution(pose=pose, points=points, n_points=len(d.names), n_used=n_used,
                               rms=float(np.sqrt(np.mean(r_used ** 2))),
                               mean=float(np.mean(r_used)), max=r_max,

@@ -301,11 +301,13 @@ def solve_joint(measurement, *, threshold: float = defaults.THRESHOLD,
         judged = selected_doubt(K, stated, s_res, dof, threshold, gate, reach, cov_json, R, at)
         tcp_std = tcp_std * (judged / doubt)
         doubt = precision["tcp_at_95"] = judged
+    robot = laser @ R.T + t + e      # the reflector in world with the solved TCP
     points = [PointResult(name=names[k], residual=float(resid[k]),
                           loo_residual=float(loo[k] if used[k] else resid[k]), used=bool(used[k]),
                           dx=float(e[k, 0]), dy=float(e[k, 1]), dz=float(e[k, 2]),
                           excluded_by=marks[k], weight=float(weights[k]),
-                          line=measurement.lines[k] if measurement.lines else None)
+                          line=measurement.lines[k] if measurement.lines else None,
+                          laser=laser[k].tolist(), robot=robot[k].tolist())
               for k in range(n)]
     pose = Pose.from_matrix(tuple(map(tuple, R.tolist())), t.tolist())
     tcp = tuple(float(v) for v in x)
