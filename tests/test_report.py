@@ -403,3 +403,27 @@ def test_station_views_draw_every_frame_where_it_moved(report):
     # a rejected entry shows where it should be, not a shift it does not have
     assert all(not by_name[a["data-name"]].get("accepted") for s, a in frames
                if a["data-dx"] == "")
+
+
+def test_each_solved_entry_links_its_picture(report):
+    """issue 29 point 2: every solved entry's details link its 3D picture, a
+    page of ``ucsio view`` in REPORT.views beside the report, all pages
+    sharing one three.js there (the report itself stays without script);
+    each page's scene holds that entry's frame and points."""
+    from ucsio.picture.page import three_version
+    path, doc = report
+    folder = path.with_suffix(".views")
+    links = [a["href"] for t, a in _parse(path).tags if t == "a" and a.get("class") == "view"]
+    solved = [k for k, e in enumerate(doc["entries"]) if e.get("points")]
+    assert links == [f"{folder.name}/{k + 1:04d}.html" for k in solved]
+    assert three_version() in (folder / "three.js").read_text(encoding="utf-8")[:200]
+    assert path.read_bytes().count(b"<script") == 1          # the JSON data block alone
+    for k in solved[:5] + solved[-5:]:
+        page = _parse(folder / f"{k + 1:04d}.html")
+        scene = json.loads(page.script["ucsio-scene"])
+        e = doc["entries"][k]
+        assert [p["name"] for p in scene["points"]] == [p["name"] for p in e["points"]]
+        origin = scene["measured"]["origin"]
+        assert origin == pytest.approx([e["frame"]["x"], e["frame"]["y"], e["frame"]["z"]],
+                                       abs=1e-6)
+        assert any(t == "script" and a.get("src") == "three.js" for t, a in page.tags)

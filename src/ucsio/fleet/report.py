@@ -959,8 +959,9 @@ def render_report(data: dict, title: str = "ucsio batch report",
     parts.append("</table>")
 
     parts.append("<h2>Details</h2>")
+    views = meta.get("views") or {}
     for i, e in enumerate(entries):
-        parts.append(_detail(i, e, meta.get("base")))
+        parts.append(_detail(i, e, meta.get("base"), views.get(i)))
 
     payload = json.dumps(data, ensure_ascii=False, allow_nan=False).replace("</", "<\\/")
     parts.append(f'<script type="application/json" id="ucsio-data">{payload}</script>')
@@ -1125,7 +1126,7 @@ def _delta_cells(d: dict, sim: Any, mea: Any, keys: str) -> str:
     return "".join(cell(k, 3) for k in "xyz") + "".join(cell(k, 4) for k in keys)
 
 
-def _detail(i: int, e: dict, base: str | None = None) -> str:
+def _detail(i: int, e: dict, base: str | None = None, view: str | None = None) -> str:
     status = e.get("status")
     cls = STATUS_CLASS.get(status, "err")
     is_open = status in ("error", "rejected") or bool(e.get("patch_error"))
@@ -1143,6 +1144,10 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
                     f'written: {_e(e["patch_error"])}</div>')
     for w in e.get("warnings") or []:       # an unset simulated frame, unpaired points
         body.append(f'<p class="note warning" style="flex-basis:100%">warning: {_e(w)}</p>')
+    if view is not None:                    # the entry's 3D picture, a page beside the report
+        body.append(f'<p class="note" style="flex-basis:100%"><a class="view" '
+                    f'href="{_e(view)}">the picture: points, residuals, simulated and '
+                    'measured frame in 3D</a> (ucsio view)</p>')
     if e.get("simulated") or e.get("frame"):
         from ..vendors import angle_columns
         cols = angle_columns(e.get("vendor"))       # the vendor's own names (FANUC w p r, ...)
@@ -1243,7 +1248,8 @@ def _detail(i: int, e: dict, base: str | None = None) -> str:
 
 def write_report(result, path: str, csv: str | None = None) -> None:
     """Write the report of a ``BatchResult`` (atomically); ``csv``: the CSV
-    written beside it, linked from the report."""
+    written beside it, linked from the report; each solved entry's picture
+    (``ucsio view``'s page) in the folder beside it (``views_folder``)."""
     from .. import __version__
     from ..files import atomic_write_text
     from ..output import _clean, versioned
@@ -1251,5 +1257,47 @@ def write_report(result, path: str, csv: str | None = None) -> None:
     data = _clean(versioned(result.as_dict()))      # batch --json's document, embedded
     now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0)
     meta = {"generated": now.strftime("%Y-%m-%d %H:%M UTC"), "version": __version__,
-            "csv": csv, "base": os.path.dirname(os.path.abspath(path))}
+            "csv": csv, "base": os.path.dirname(os.path.abspath(path)),
+            "views": write_views(result, path)}
     atomic_write_text(path, render_report(data, meta=meta))
+
+
+def views_folder(path: str) -> str:
+    """Where the report's pictures go: REPORT.views beside REPORT.html."""
+    return os.path.splitext(path)[0] + ".views"
+
+
+def write_views(result, path: str) -> dict[int, str]:
+    """Each solved entry's picture as ``ucsio view`` draws it (its points,
+    residuals, the simulated and the measured frame), one page per entry in
+    ``views_folder(path)``, all linking one shared copy of three.js there:
+    the report itself stays small and without script. Returns each entry's
+    index -> the page's address relative to the report."""
+    from ..files import atomic_write_text
+    from ..picture.page import page, write_library
+    from ..picture.scene import scene
+
+    solved = [(k, r) for k, r in enumerate(result.entries) if r.solution is not None]
+    if not solved:
+        return {}
+    folder = views_folder(path)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as exc:
+        from ..errors import UcsioError
+        raise UcsioError(f"--report: cannot make the folder for the pictures: "
+                         f"{exc.strerror or exc}", file=folder) from None
+    write_library(folder)
+    hrefs = {}
+    for k, r in solved:
+        simulated = None
+        if r.simulated is not None and r.measured is not None and r.delta is not None:
+            simulated = {"simulated": r.simulated.as_dict(), "measured": r.measured.as_dict(),
+                         "name": r.entry.frame, **r.delta}
+        name = f"{k + 1:04d}.html"
+        atomic_write_text(os.path.join(folder, name),
+                          page(scene(r.solution.as_dict(), simulated=simulated,
+                                     source=f"{r.entry.name}: {r.entry.frame}"),
+                               library="three.js"))
+        hrefs[k] = f"{os.path.basename(folder)}/{name}"
+    return hrefs
