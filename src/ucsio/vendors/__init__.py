@@ -61,6 +61,7 @@ VENDORS = (
     # first line); what ucsio does not read yet is refused by parsing.foreign
     Entry("yaskawa", "Yaskawa", (".cnd", ".jbi"), (".cnd", ".jbi"), "ucsio.vendors.yaskawa", (),
           heads=("//RBCALIB", "//VAR"), programs=(".jbi",)),
+    Entry("staubli", "Stäubli", (".dtx",), (".dtx",), "ucsio.vendors.staubli", ()),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
