@@ -25,14 +25,14 @@ from __future__ import annotations
 
 import math
 
-from ...geometry.frames import UNKNOWN, WORLD, Frame, Number, Parent, Pose, flange, frame_parent
+from ...geometry.frames import Frame, Number, Pose
 from ...parsing import regex
 from ...parsing.document import Document, Span
 from ...parsing.model import ControllerFile
 from .convention import xyz_to_quat
+from .entries import COMPONENTS, Entry, father_parent
 
 VENDOR = "staubli"
-COMPONENTS = ("x", "y", "z", "rx", "ry", "rz")
 CS8, CS9 = "CS8", "CS9"
 # CS8 section element -> (kind, father element, entry element, value element)
 CS8_KINDS = {"frame": ("frame", "fFather", "valueFrame", "tfValue"),
@@ -68,29 +68,6 @@ class Tag:
     def get(self, key: str, default: str | None = None) -> str | None:
         got = self.attrs.get(key)
         return got[0] if got is not None else default
-
-
-class Entry:
-    """One array entry of a frame, tool or point: its datum, index, the
-    numbers written (absent ones are 0) and its father as written."""
-
-    __slots__ = ("kind", "data", "index", "size", "numbers", "father", "at", "data_at")
-
-    def __init__(self, kind: str, data: str, index: int, size: int, numbers: dict[str, Number],
-                 father: tuple[str, int] | None, at: int, data_at: int):
-        self.kind, self.data, self.index, self.size = kind, data, index, size
-        self.numbers, self.father, self.at, self.data_at = numbers, father, at, data_at
-
-    @property
-    def name(self) -> str:
-        return entry_name(self.data, self.index, self.size)
-
-    def values(self) -> tuple[float, ...]:
-        return tuple(self.numbers[k].value if k in self.numbers else 0.0 for k in COMPONENTS)
-
-
-def entry_name(data: str, index: int, size: int) -> str:
-    return data if size <= 1 and index == 0 else f"{data}[{index}]"
 
 
 # -- the tags ------------------------------------------------------------------------
@@ -163,14 +140,14 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     cf = ControllerFile(document=doc, vendor=VENDOR)
     dialect, entries, roots = _entries(doc)
     cf.extra["dialect"] = dialect
-    from . import lints
+    from .fathers import lint
     known = {e.name: e for e in entries if e.kind != "point"}
     for e in entries:
         if e.kind != "point":
             cf.frames.append(_frame(doc, e, known))
     cf.extra["points"] = [e for e in entries if e.kind == "point"]
     cf.extra["roots"] = roots
-    lints.lint(cf, entries, roots)
+    lint(cf, entries)
     return cf
 
 
@@ -338,21 +315,3 @@ def _frame(doc: Document, e: Entry, known: dict[str, Entry]) -> Frame:
 
 def _father_text(father: tuple[str, int] | None) -> str | None:
     return None if father is None else f"{father[0]}[{father[1]}]"
-
-
-def father_parent(e: Entry, known: dict[str, Entry]) -> Parent:
-    """The node an entry hangs from: another frame or tool of the file
-    (``name[k]``, or ``name`` for a datum of one entry), else VAL3's roots
-    ``world[0]`` and ``flange[0]``; a father the file does not hold is a
-    frame the tree lists under unknown (and check reports)."""
-    if e.father is None:
-        return UNKNOWN
-    name, index = e.father
-    for candidate in (f"{name}[{index}]", name if index == 0 else None):
-        if candidate in known:
-            return frame_parent(candidate)
-    if index == 0 and name == "world":
-        return WORLD
-    if index == 0 and name == "flange":
-        return flange()
-    return frame_parent(f"{name}[{index}]")

@@ -18,6 +18,7 @@ from ...errors import UcsioError
 from ...geometry.frames import Pose
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
 from .convention import READING, xyz_to_quat
+from .entries import father_parent
 
 FLANGE_NAMES = ("tool0", "flange")
 
@@ -64,7 +65,6 @@ def _tool(cf, frames, tool: str, path: str) -> tuple[Pose, str]:
 
 def _in_world(cf, frames, e) -> Pose:
     """The father frame of point ``e`` in world."""
-    from .dtx import father_parent
     parent = father_parent(e, frames)
     if parent.kind == "world":
         return Pose.from_quat(0, 0, 0, (1.0, 0.0, 0.0, 0.0))
