@@ -140,6 +140,9 @@ def test_every_byte_round_trips_and_numbers_are_their_spans(raw):
     (cs9(datum("f", "frame", 'key="0" x="1" x="2"')), "5:28", "given twice"),
     (cs9(datum("f", "frame", 'key="0" fatherId="world"')), "5:32", "not name[index]"),
     (cs9(datum("f", "frame", 'key="zero"')), "5:19", "not a whole number"),
+    # names with blanks or line breaks (a mangled file) are no VAL3 names
+    (cs9(datum("f", "frame", 'key="0" fatherId="world\r\n[0]"')), "5:32", "not name[index]"),
+    (cs9(datum("f\nf", "frame", 'key="0"')), "4:17", "is not a VAL3 name"),
     (cs9(datum("f", "frame", 'key="0" x=1')), "5:22", "not an attribute"),
     (cs9("    <Data name=\"f\" type=\"frame\" size=\"1\">\n", extra="  </Data>\n"),
      "5:3", "</Datas> where <Data> (line 4) is still open"),

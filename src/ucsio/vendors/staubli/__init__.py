@@ -60,7 +60,8 @@ class Staubli(Defaults):
 def _refuse(frame, where: dict):
     from ...errors import UcsioError
     from .convention import REFUSAL
-    raise UcsioError(f"{frame.name}: {REFUSAL}", **where)
+    from .dtx import shown
+    raise UcsioError(f"{shown(frame.name)}: {REFUSAL}", **where)
 
 
 VENDOR = Staubli()

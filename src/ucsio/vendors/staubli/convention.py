@@ -27,9 +27,8 @@ from ...geometry import rotations as rot
 
 READING = "R = Rx(rx)·Ry(ry)·Rz(rz), RoboDK's reading"
 REFUSAL = ("Stäubli's rotation order (rx, ry, rz) is not proved from Stäubli's VAL3 "
-           f"documentation or real data (ucsio reads it as {READING}, unconfirmed): "
-           "ucsio does not write .dtx frames, nothing written (set the frame on the pendant "
-           "or in Stäubli Robotics Suite)")
+           "documentation or real data: ucsio does not write .dtx frames, nothing written "
+           "(set the frame on the pendant)")
 
 
 def xyz_to_quat(rx: float, ry: float, rz: float) -> rot.Quat:

@@ -47,6 +47,13 @@ _TAG = regex.lazy(
 _ATTR = regex.lazy(r"\s+(?P<key>[A-Za-z_][\w.:-]*)\s*=\s*(?:\"(?P<dq>[^\"<]*)\"|'(?P<sq>[^'<]*)')")
 _NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
 _FATHER_ID = regex.lazy(r"(?P<name>[^\[\]]*)\[(?P<index>[0-9]+)\]\Z")
+# a VAL3 name: letters, digits and _ (no blank, bracket or line break)
+_NAME = regex.lazy(r"\w+\Z")
+
+
+def shown(name: str, most: int = 40) -> str:
+    """A name as a message shows it: a mangled file's may run for lines."""
+    return name if len(name) <= most else name[:most] + "…"
 
 
 def sniff(doc: Document) -> bool:
@@ -95,7 +102,7 @@ def tags(doc: Document):
         if not m.group("empty"):
             stack.append(tag)
     if stack:
-        raise doc.error(f"<{stack[-1].name}> is never closed", stack[-1].at)
+        raise doc.error(f"<{shown(stack[-1].name)}> is never closed", stack[-1].at)
     if text[pos:].strip():
         raise doc.error("text after the last element", pos + len(text[pos:]) -
                         len(text[pos:].lstrip()))
@@ -104,12 +111,13 @@ def tags(doc: Document):
 def _close(doc: Document, stack: list[Tag], m, at: int) -> None:
     name = m.group("name")
     if m.group("attrs").strip() or m.group("empty"):
-        raise doc.error(f"</{name}> with something after its name", m.start("attrs"))
+        raise doc.error(f"</{shown(name)}> with something after its name", m.start("attrs"))
     if not stack:
-        raise doc.error(f"</{name}> closes no element", at)
+        raise doc.error(f"</{shown(name)}> closes no element", at)
     if stack[-1].name != name:
         line = doc.line_of(stack[-1].at)
-        raise doc.error(f"</{name}> where <{stack[-1].name}> (line {line}) is still open", at)
+        raise doc.error(f"</{shown(name)}> where <{shown(stack[-1].name)}> (line {line}) is "
+                        "still open", at)
     stack.pop()
 
 
@@ -123,7 +131,7 @@ def _attributes(doc: Document, text: str, at: int) -> dict[str, tuple[str, int]]
         key = m.group("key")
         group = "dq" if m.group("dq") is not None else "sq"
         if key in out:
-            raise doc.error(f"attribute {key} given twice", at + m.start("key"))
+            raise doc.error(f"attribute {shown(key)} given twice", at + m.start("key"))
         out[key] = (m.group(group), at + m.start(group))
         pos = m.end()
     if text[pos:].strip():
@@ -178,7 +186,7 @@ def _dialect(doc: Document, root: Tag) -> str:
         return CS8
     if root.name == "Database":
         return CS9
-    raise doc.error(f"not a Stäubli VAL3 data file: its root element is <{root.name}>, not "
+    raise doc.error(f"not a Stäubli VAL3 data file: its root element is <{shown(root.name)}>, not "
                     "<dataList> (CS8) or <Database> (s7, CS9)", root.at)
 
 
@@ -203,13 +211,13 @@ def _cs8_tag(doc: Document, tag: Tag, stack: list[Tag], state: _State, entries: 
         _close_cs8(state, entries, roots)
         state.__init__()
         state.data, state.kind, state.at = tag, tag.name, tag.at
-        _require(doc, tag, "name")
+        _name(doc, tag, "name")
         return
     if state.data is None or depth < 3 or stack[2] is not state.data:
         return
     _kind, father_el, entry_el, value_el = CS8_KINDS[state.kind]
     if depth == 3 and tag.name == father_el:
-        name = tag.get("name", "")
+        name = _name(doc, tag, "name", empty=True) if "name" in tag.attrs else ""
         index = _index(doc, tag, "fatherIndex", default=0)
         state.father = (name, index)
     elif depth == 3 and tag.name == entry_el:
@@ -246,7 +254,7 @@ def _cs9_tag(doc: Document, tag: Tag, stack: list[Tag], entries: list[Entry]) ->
         size = _index(doc, data, "size", default=1)
         index = _index(doc, tag, "key", default=0)
         father = _father_id(doc, tag)
-        entries.append(Entry(kind, _require(doc, data, "name"), index, size, _numbers(doc, tag),
+        entries.append(Entry(kind, _name(doc, data, "name"), index, size, _numbers(doc, tag),
                              father, tag.at, data.at))
 
 
@@ -256,15 +264,25 @@ def _father_id(doc: Document, tag: Tag) -> tuple[str, int] | None:
         return None
     text, at = got
     m = _FATHER_ID.match(text)
-    if m is None:
-        raise doc.error(f"fatherId {text[:40]!r} is not name[index]", at)
+    if m is None or _NAME.match(m.group("name")) is None:
+        raise doc.error(f"fatherId {shown(text)!r} is not name[index]", at)
     return m.group("name"), doc.integer(m.group("index"), at + m.start("index"), "fatherId index")
 
 
 def _require(doc: Document, tag: Tag, key: str) -> str:
     value = tag.get(key)
     if value is None:
-        raise doc.error(f"<{tag.name}> without its {key}", tag.at)
+        raise doc.error(f"<{shown(tag.name)}> without its {key}", tag.at)
+    return value
+
+
+def _name(doc: Document, tag: Tag, key: str, empty: bool = False) -> str:
+    """A datum's or father's name, a VAL3 name (``empty``: "" allowed, a
+    CS8 root's father)."""
+    value = _require(doc, tag, key)
+    if not (empty and value == "") and _NAME.match(value) is None:
+        raise doc.error(f"{key} {shown(value)!r} is not a VAL3 name (letters, digits, _)",
+                        tag.attrs[key][1])
     return value
 
 

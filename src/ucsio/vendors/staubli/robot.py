@@ -18,6 +18,7 @@ from ...errors import UcsioError
 from ...geometry.frames import Pose
 from ..common.robot import RobotPose, RobotPoses, few_names, matrix
 from .convention import READING, xyz_to_quat
+from .dtx import shown
 from .entries import father_parent
 
 FLANGE_NAMES = ("tool0", "flange")
@@ -70,8 +71,9 @@ def _in_world(cf, frames, e) -> Pose:
         return Pose.from_quat(0, 0, 0, (1.0, 0.0, 0.0, 0.0))
     frame = frames.get(parent.name) if parent.kind == "frame" else None
     if frame is None or frame.type != "frame":
-        raise cf.document.error(f"{e.name}: its father {parent.name} is not a frame of this "
-                                "file: where the point is in world is not known", e.at)
+        raise cf.document.error(f"{shown(e.name)}: its father {shown(parent.name)} is not a "
+                                "frame of this file: where the point is in world is not known",
+                                e.at)
     return _chain(cf, frames, frame, "world")
 
 
@@ -82,12 +84,14 @@ def _chain(cf, frames, frame, root: str) -> Pose:
     while parent.kind == "frame":
         up = frames.get(parent.name)
         if up is None or parent.name in seen:
-            raise cf.document.error(f"{frame.name}: its fathers ({' on '.join(seen)}) do not "
-                                    f"reach {root}", cf.document.line_starts[frame.line - 1])
+            raise cf.document.error(f"{shown(frame.name)}: its fathers do not reach {root} "
+                                    f"({shown(' on '.join(seen), 120)})",
+                                    cf.document.line_starts[frame.line - 1])
         seen.append(up.name)
         pose = up.pose.compose(pose)
         parent = up.parent
     if parent.kind != root:
-        raise cf.document.error(f"{frame.name}: hangs from {parent.name}, not {root}",
+        raise cf.document.error(f"{shown(frame.name)}: hangs from {shown(parent.name)}, not "
+                                f"{root}",
                                 cf.document.line_starts[frame.line - 1])
     return pose
