@@ -41,10 +41,14 @@ CS8_KINDS = {"frame": ("frame", "fFather", "valueFrame", "tfValue"),
 # s7/CS9 Data type -> kind
 CS9_KINDS = {"frame": "frame", "tool": "tool", "pointRx": "point"}
 
+# a comment, declaration or processing instruction (no name), or a tag: its
+# attributes greedy up to '>' (an empty element's ends in '/')
 _TAG = regex.lazy(
-    r"(?s)<(?:(?P<comment>!--.*?-->)|(?P<pi>\?.*?\?>)|(?P<decl>![^>]*>)"
-    r"|(?P<close>/)?(?P<name>[A-Za-z_][\w.:-]*)(?P<attrs>[^<>]*?)(?P<empty>/)?>)")
+    r"(?s)<(?:!--.*?-->|\?.*?\?>|![^>]*>"
+    r"|(?P<close>/)?(?P<name>[A-Za-z_][\w.:-]*)(?P<attrs>[^<>]*)>)")
 _ATTR = regex.lazy(r"\s+(?P<key>[A-Za-z_][\w.:-]*)\s*=\s*(?:\"(?P<dq>[^\"<]*)\"|'(?P<sq>[^'<]*)')")
+# a tag's attributes, checked for their form at once (parsed only where read)
+_ATTRS = regex.lazy(r"(?:\s+[A-Za-z_][\w.:-]*\s*=\s*(?:\"[^\"<]*\"|'[^'<]*'))*\s*")
 _NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\Z")
 _FATHER_ID = regex.lazy(r"(?P<name>[^\[\]]*)\[(?P<index>[0-9]+)\]\Z")
 # a VAL3 name: letters, digits and _ (no blank, bracket or line break)
@@ -64,13 +68,22 @@ def sniff(doc: Document) -> bool:
 
 
 class Tag:
-    """One start tag: its name, its attributes (name -> (value, offset of
-    the value)) and where it starts."""
+    """One start tag: its name, where it starts, and its attributes (name ->
+    (value, offset of the value)), parsed when first asked for: most tags
+    of a file are checked for their form only."""
 
-    __slots__ = ("name", "attrs", "at")
+    __slots__ = ("name", "at", "_doc", "_text", "_text_at", "_attrs")
 
-    def __init__(self, name: str, attrs: dict[str, tuple[str, int]], at: int):
-        self.name, self.attrs, self.at = name, attrs, at
+    def __init__(self, name: str, at: int, doc: Document, text: str, text_at: int):
+        self.name, self.at = name, at
+        self._doc, self._text, self._text_at = doc, text, text_at
+        self._attrs: dict[str, tuple[str, int]] | None = None
+
+    @property
+    def attrs(self) -> dict[str, tuple[str, int]]:
+        if self._attrs is None:
+            self._attrs = _attributes(self._doc, self._text, self._text_at)
+        return self._attrs
 
     def get(self, key: str, default: str | None = None) -> str | None:
         got = self.attrs.get(key)
@@ -80,27 +93,33 @@ class Tag:
 # -- the tags ------------------------------------------------------------------------
 def tags(doc: Document):
     """Each start tag of the document, in order (an empty element's too),
-    with its nesting checked: yields (Tag, depth of its parent path)."""
+    with its nesting checked: yields (Tag, the open elements around it)."""
     text = doc.text
     stack: list[Tag] = []
     pos = 0
-    while True:
-        i = text.find("<", pos)
-        if i < 0:
-            break
-        m = _TAG.match(text, i)
-        if m is None:
-            raise doc.error("a '<' that opens no tag, comment or declaration", i)
+    attrs_ok = _ATTRS.fullmatch         # bound once: a file has thousands of tags
+    for m in _TAG.finditer(text):
+        i = m.start()
+        if text.find("<", pos, i) >= 0:                 # skipped: it opens nothing
+            raise doc.error("a '<' that opens no tag, comment or declaration",
+                            text.find("<", pos, i))
         pos = m.end()
-        if m.group("name") is None:
+        name = m.group("name")
+        if name is None:
             continue                                    # <?xml ?>, <!-- -->, <!DOCTYPE>
         if m.group("close"):
             _close(doc, stack, m, i)
             continue
-        tag = Tag(m.group("name"), _attributes(doc, m.group("attrs"), m.start("attrs")), i)
+        attrs = m.group("attrs")
+        empty = attrs.endswith("/")
+        tag = Tag(name, i, doc, attrs[:-1] if empty else attrs, m.start("attrs"))
+        if attrs and attrs_ok(tag._text) is None:
+            tag.attrs                                   # its error, at the place
         yield tag, stack
-        if not m.group("empty"):
+        if not empty:
             stack.append(tag)
+    if text.find("<", pos) >= 0:
+        raise doc.error("a '<' that opens no tag, comment or declaration", text.find("<", pos))
     if stack:
         raise doc.error(f"<{shown(stack[-1].name)}> is never closed", stack[-1].at)
     if text[pos:].strip():
@@ -110,7 +129,7 @@ def tags(doc: Document):
 
 def _close(doc: Document, stack: list[Tag], m, at: int) -> None:
     name = m.group("name")
-    if m.group("attrs").strip() or m.group("empty"):
+    if m.group("attrs").strip():
         raise doc.error(f"</{shown(name)}> with something after its name", m.start("attrs"))
     if not stack:
         raise doc.error(f"</{shown(name)}> closes no element", at)
