@@ -284,3 +284,30 @@ def test_an_unresolvable_point_carries_its_problem(tmp_path):
     assert b.problem is None and b.flange[0, 3] == 2.0
     with pytest.raises(UcsioError, match="not a tool of this file"):
         read_robot(str(path), tool="tNone")
+
+
+def test_solve_reads_a_pointrx_table_as_the_robot_side(capsys, tmp_path):
+    """End to end on synthetic truth: the UCS's points, seen by the tracker in
+    the UCS and taught as pointRx poses (in world, the reflector 10,-5,120 on
+    the flange), give back the UCS."""
+    rng = np.random.default_rng(4)
+    truth = matrix(1500.0, -250.0, 300.0, 0, 0, 0)
+    truth[:3, :3] = Rotation.from_euler("ZYX", [30.0, 5.0, -2.0], degrees=True).as_matrix()
+    tcp = np.array([10.0, -5.0, 120.0])
+    laser = rng.uniform([-200, -200, 0], [200, 200, 150], (6, 3))
+    values, rows = [], ["point,laser_x,laser_y,laser_z"]
+    for k, p in enumerate(laser):
+        rx, ry, rz = rng.uniform(-40, 40, 3) + (180, 0, 0)
+        flange_r = Rotation.from_euler("XYZ", [rx, ry, rz], degrees=True).as_matrix()
+        x, y, z = (truth @ [*p, 1.0])[:3] - flange_r @ tcp
+        values.append(f'key="{k}" x="{x:.6f}" y="{y:.6f}" z="{z:.6f}" rx="{rx:.6f}" '
+                      f'ry="{ry:.6f}" rz="{rz:.6f}" fatherId="world[0]"')
+        rows.append(f"pMeas[{k}],{p[0]:.6f},{p[1]:.6f},{p[2]:.6f}")
+    (tmp_path / "cell.dtx").write_text(cs9(datum("pMeas", "pointRx", *values)))
+    (tmp_path / "laser.csv").write_text("\n".join(rows) + "\n")
+    code, out, err = cli(capsys, "solve", "--laser", tmp_path / "laser.csv", "--robot",
+                         tmp_path / "cell.dtx", "--tcp", "10,-5,120", "--json")
+    assert code == 0, err
+    frame = json.loads(out)["frame"]
+    assert np.allclose([frame["x"], frame["y"], frame["z"]], truth[:3, 3], atol=1e-4)
+    assert np.allclose([frame["a"], frame["b"], frame["c"]], [30.0, 5.0, -2.0], atol=1e-5)

@@ -253,7 +253,7 @@ def _close_cs8(state: _State, entries: list[Entry], roots: dict[str, str]) -> No
     if state.data is None:
         return
     father = state.father
-    if father is not None and father[0] == "":
+    if father is not None and father[0] == "" and state.kind != "point":
         roots[state.data.get("name")] = state.kind
         return
     size = len(state.entries)
