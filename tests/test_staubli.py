@@ -149,6 +149,7 @@ def test_every_byte_round_trips_and_numbers_are_their_spans(raw):
     (cs9("").replace("</Database>\n", ""), "2:1", "<Database> is never closed"),
     (cs9("    <Data name=\"f\" type=\"frame\" size=\"1\" <Value/>\n"), "4:5", "'<' that opens"),
     ('<?xml version="1.0"?>\n<robot>\n</robot>\n', "2:1", "not a Stäubli VAL3 data file"),
+    (cs9("") + "<Database/>\n", "6:1", "a second top-level element <Database>"),
 ])
 def test_malformed_files_are_one_error_naming_the_place(capsys, tmp_path, text, where, words):
     path = tmp_path / "bad.dtx"

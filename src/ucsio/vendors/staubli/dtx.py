@@ -72,17 +72,17 @@ class Tag:
     (value, offset of the value)), parsed when first asked for: most tags
     of a file are checked for their form only."""
 
-    __slots__ = ("name", "at", "_doc", "_text", "_text_at", "_attrs")
+    __slots__ = ("name", "at", "attr_text", "_doc", "_text_at", "_attrs")
 
     def __init__(self, name: str, at: int, doc: Document, text: str, text_at: int):
         self.name, self.at = name, at
-        self._doc, self._text, self._text_at = doc, text, text_at
+        self.attr_text, self._doc, self._text_at = text, doc, text_at
         self._attrs: dict[str, tuple[str, int]] | None = None
 
     @property
     def attrs(self) -> dict[str, tuple[str, int]]:
         if self._attrs is None:
-            self._attrs = _attributes(self._doc, self._text, self._text_at)
+            self._attrs = _attributes(self._doc, self.attr_text, self._text_at)
         return self._attrs
 
     def get(self, key: str, default: str | None = None) -> str | None:
@@ -113,7 +113,7 @@ def tags(doc: Document):
         attrs = m.group("attrs")
         empty = attrs.endswith("/")
         tag = Tag(name, i, doc, attrs[:-1] if empty else attrs, m.start("attrs"))
-        if attrs and attrs_ok(tag._text) is None:
+        if attrs and attrs_ok(tag.attr_text) is None:
             tag.attrs                                   # its error, at the place
         yield tag, stack
         if not empty:
@@ -188,6 +188,8 @@ def _entries(doc: Document) -> tuple[str, list[Entry], dict[str, str]]:
     state = _State()
     for tag, stack in tags(doc):
         if not stack:
+            if dialect is not None:
+                raise doc.error(f"a second top-level element <{shown(tag.name)}>", tag.at)
             dialect = _dialect(doc, tag)
             continue
         if dialect == CS8:
