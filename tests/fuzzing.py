@@ -407,33 +407,39 @@ def _in_temp(name: str, raw: bytes, use):
 
 
 def robot_positions_oracle(name: str, raw: bytes, doc: Document, fast) -> None:
-    """solve --robot's reader of a job (.JBI): a clean error where check
-    refuses the job, else one robot position per C and P row, each a finite
-    flange pose or a clean problem; never another exception."""
+    """solve --robot's reader of a job (.JBI) or a .dtx's points: a clean
+    error where check refuses the file, else one robot position per C and P
+    row (per point), each a finite flange pose or a clean problem; never
+    another exception."""
     from ucsio import vendors
     from ucsio.parsing.controller import load
 
     if name.lower().endswith(".installation"):
         _taught_poses_oracle(name, raw, doc, fast)
         return
-    if not name.lower().endswith(".jbi"):
+    suffix = name.lower().rsplit(".", 1)[-1]
+    if suffix not in ("jbi", "dtx"):
         return
-    vendor = vendors.get("yaskawa")
-    configs = (str(R05 / "TOOL.CND"), str(R05 / "UFRAME.CND"))
+    who = "yaskawa" if suffix == "jbi" else "staubli"
+    vendor = vendors.get(who)
+    configs = (str(R05 / "TOOL.CND"), str(R05 / "UFRAME.CND")) if who == "yaskawa" else None
     try:
         got = _in_temp(name, raw, lambda path: vendor.robot_positions(
             path, config=configs, tool="tool0", wobj="wobj0", load=load))
     except UcsioError as exc:
         _sane_error(doc, exc, "solve --robot")
-        if fast is not None and fast.vendor == "yaskawa":
-            raise Finding(f"solve --robot refuses a job check reads: {exc.message}"[:300]) \
+        if fast is not None and fast.vendor == who:
+            raise Finding(f"solve --robot refuses a file check reads: {exc.message}"[:300]) \
                 from exc
         return
     except Exception as exc:  # noqa: BLE001
         raise Finding(f"solve --robot: {type(exc).__name__}: {exc}"[:300]) from exc
-    if fast is None or fast.extra.get("kind") != "job":
+    if who == "yaskawa" and (fast is None or fast.extra.get("kind") != "job"):
         raise Finding("solve --robot reads a job check refuses")
-    rows = [p for p in fast.extra["positions"] if p.kind in ("C", "P")]
+    if fast is None or fast.vendor != who:
+        raise Finding("solve --robot reads a file check refuses")
+    rows = [p for p in fast.extra["positions"] if p.kind in ("C", "P")] if who == "yaskawa" \
+        else fast.extra["points"]
     if len(got.poses) != len(rows):
         raise Finding(f"solve --robot: {len(got.poses)} positions, check reads {len(rows)}")
     for rp in got.poses:

@@ -25,12 +25,14 @@ from ucsio.cli import main
 DATA = FIXTURES / "fanuc" / "backup_data"
 UB = "irbzavalagit__UB10200_RBT01__"
 KRL_DAT = b"&ACCESS RVP\r\nDEFDAT MYDATA\r\nDECL FRAME F1={X 1.0,Y 2.0,Z 3.0,A 0,B 0,C 0}\r\nENDDAT\r\n"
-# (Yaskawa's UFRAME.CND, TOOL.CND, jobs, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py)
-FOREIGN = sorted(p for vendor in ("yaskawa", "staubli") if (CORPUS / vendor).is_dir()
+# (Yaskawa's UFRAME.CND, TOOL.CND, jobs, RBCALIB.DAT and VAR.DAT are read: tests/test_yaskawa*.py;
+# Stäubli's .dtx: tests/test_staubli.py; Universal Robots' .installation: tests/test_ur.py)
+FOREIGN = sorted(p for vendor in ("yaskawa", "staubli", "ur") if (CORPUS / vendor).is_dir()
                  for p in (CORPUS / vendor).iterdir()
                  if p.suffix not in (".md", ".tsv")
                  and ".CND" not in p.name.upper() and ".JBI" not in p.name.upper()
                  and "RBCALIB.DAT" not in p.name.upper()
+                 and p.suffix.lower() not in (".dtx", ".installation")
                  and not p.name.upper().endswith("VAR.DAT"))
 # what a refusal says of the vendor's files
 NOT_READ = {"yaskawa": "does not read this Yaskawa file yet (of Yaskawa's files it reads "

@@ -25,6 +25,8 @@ FANUC_SEEDS = [p for p in fuzzing.seed_files(max_size=40_000)
 YASKAWA = [p for p in SEEDS if "yaskawa" in str(p).lower()]
 YASKAWA_SEEDS = [p for p in YASKAWA if p.suffix.lower() != ".jbi"]    # .CND, RBCALIB, VAR.DAT
 YASKAWA_JOBS = [p for p in YASKAWA if p.suffix.lower() == ".jbi"]
+# Stäubli: the corpus's .dtx files and our fixtures (both dialects)
+STAUBLI_SEEDS = [p for p in SEEDS if p.suffix.lower() == ".dtx"]
 SETTINGS = dict(deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
@@ -81,6 +83,16 @@ def test_mutated_ur_installations(seed, ops, inside):
     raw = seed.read_bytes()
     mutated = fuzzing.mutate_inside_gzip(raw, ops) if inside else fuzzing.mutate(raw, ops)
     fuzzing.check_bytes(seed.name, mutated)
+
+
+@settings(max_examples=60, **SETTINGS)
+@given(seed=st.sampled_from(STAUBLI_SEEDS or [None]), ops=ops)
+def test_mutated_staubli_files(seed, ops):
+    """.dtx files of both dialects through check, solve --robot's reader of
+    their points, and patch (refused: the rotation order is not proved)."""
+    if seed is None:
+        pytest.skip("no Stäubli seed")
+    fuzzing.check_bytes(seed.name, fuzzing.mutate(seed.read_bytes(), ops))
 
 
 # ------------------------------------------------------------------ generated modules

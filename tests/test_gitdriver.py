@@ -181,3 +181,49 @@ def test_yaskawa_file_without_a_suffix_is_known_by_its_first_line(yaskawa_repo, 
     res = subprocess.run([sys.executable, "-m", "ucsio", "diff", str(bare),
                           str(yaskawa_repo / "R05" / source)], capture_output=True, text=True)
     assert res.returncode == 0 and "no frame changed" in res.stdout, res.stderr
+
+
+# -- Stäubli: .dtx of both dialects ---------------------------------------------------------
+@pytest.fixture
+def staubli_repo(tmp_path):
+    """A Stäubli cell under git: a CS8 .dtx (BOM, CRLF) and an s7/CS9 one
+    (BOM, LF). patch does not write .dtx (the rotation order is not proved):
+    the pendant's new values arrive as an edited file."""
+    r = tmp_path / "staubli"
+    (r / "R06").mkdir(parents=True)
+    for name in ("cell_cs8.dtx", "cell_cs9.dtx"):
+        shutil.copy(FIXTURES / "staubli" / name, r / "R06" / name)
+    (r / ".gitattributes").write_text("*.dtx diff=ucsio\n")
+    git(r, "init", "-q", ".")
+    git(r, "add", ".")
+    git(r, "commit", "-q", "-m", "backup 1")
+    return r
+
+
+def _move_staubli(repo):
+    for name, old, new in (("cell_cs8.dtx", b'z="12.5" rx="180"', b'z="13.5" rx="180"'),
+                           ("cell_cs9.dtx", b'x="25" y="25"', b'x="25.5" y="25"')):
+        path = repo / "R06" / name
+        path.write_bytes(path.read_bytes().replace(old, new))
+
+
+def test_staubli_external_diff_driver(staubli_repo):
+    git(staubli_repo, "config", "diff.ucsio.command", UCSIO)
+    _move_staubli(staubli_repo)
+    out = git(staubli_repo, "diff")
+    assert "ucsio diff a/R06/cell_cs8.dtx b/R06/cell_cs8.dtx" in out
+    assert "~ fFixture[1] (frame): value changed" in out and "dz +1.000" in out
+    assert "~ fPart (frame): value changed" in out and "dx +0.500" in out
+    assert "error" not in out.lower() and "lines changed beyond the frame values" not in out
+
+
+def test_staubli_textconv_driver(staubli_repo):
+    git(staubli_repo, "config", "diff.ucsio.textconv", f"{UCSIO} --textconv")
+    _move_staubli(staubli_repo)
+    out = git(staubli_repo, "diff")
+    changed = [ln for ln in out.splitlines()
+               if ln[:1] in "+-" and not ln.startswith(("+++", "---"))]
+    frames = [ln.split()[0] for ln in changed if ln[1:].startswith(("fFixture[1] ", "fPart "))]
+    assert frames == ["-fFixture[1]", "+fFixture[1]", "-fPart", "+fPart"]
+    assert any("z=13.5" in ln for ln in changed if ln.startswith("+fFixture[1]"))
+    assert any("x=25.5" in ln for ln in changed if ln.startswith("+fPart"))

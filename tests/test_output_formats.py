@@ -427,6 +427,7 @@ CODES_EVER = [
     "lf-only", "group-flags", "angle-range", "duplicate-block", "track-position", "unknown-line",
     "npos-count", "basicfrm-parent",
     "plane-points", "gzip-stream",
+    "father-missing", "father-circle", "father-kind", "entry-index",
     "syntax-error", "unreadable", "round-trip",
 ]
 

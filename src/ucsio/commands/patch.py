@@ -4,7 +4,8 @@ numbers.
 
 Inputs: FILE (a RAPID module, a KRL .dat file, a FANUC TP program .ls that
 sets the frame from literal PR[n,i]= lines, a FANUC sysframe.va, or a Yaskawa
-UFRAME.CND or TOOL.CND without ///CRC; not a
+UFRAME.CND or TOOL.CND without ///CRC; not a Stäubli .dtx, whose rotation
+order is not proved; not a
 file inside a .zip archive: extract it first), the frame's name, and the
 values: --measured
 SOLUTION.json (written by `ucsio solve -o`; - reads it from standard input),

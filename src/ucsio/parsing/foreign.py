@@ -5,9 +5,9 @@ Two kinds:
 - other controllers' files: Yaskawa Motoman's that ucsio does not read yet
   (the ``.CND`` condition files other than UFRAME.CND and
   TOOL.CND, and the ``SYSTEM.SYS`` of its backups, whose suffix is
-  ABB's: its first line decides), Stäubli VAL3
-  (``.dtx``/``.pgx``/``.pjx``), Universal Robots' programs (``.urp``;
-  its ``.installation`` is read by ucsio.vendors.ur);
+  ABB's: its first line decides), Stäubli VAL3's programs and projects
+  (``.pgx``/``.pjx``: ucsio reads its data files, ``.dtx``), Universal Robots' programs
+  (``.urp``; its ``.installation`` is read by ucsio.vendors.ur);
 - a FANUC backup's own ``.DAT`` files (``ORDERFIL.DAT``, ``UPDATES.DAT``):
   a ``.dat`` is KUKA data by its suffix only where its text or its folder
   does not say otherwise. A folder holding ``SYSFRAME.VA`` and ``.LS``
@@ -33,11 +33,12 @@ from . import regex
 KNOWN = (
     ("a Yaskawa Motoman file", "Yaskawa", (".prm",),
      r"/SYSTEM\b|//(?!UFRAME\b|TOOL\b|RBCALIB\b|VAR\b)[A-Z]+"),
-    ("a Stäubli VAL3 file", "Stäubli", (".dtx", ".pgx", ".pjx"), None),
+    ("a Stäubli VAL3 file", "Stäubli", (".pgx", ".pjx"), None),
     ("a Universal Robots file", "Universal Robots", (".urp",), None),
 )
 # what ucsio reads of a vendor's files, where it reads some: the refusal says so
 READS = {"Yaskawa": "UFRAME.CND, TOOL.CND, RBCALIB.DAT, VAR.DAT and jobs (.JBI)",
+         "Stäubli": "VAL3 data files (.dtx)",
          "Universal Robots": "installations (.installation)"}
 _HEADS = [(what, whose, regex.lazy(pattern)) for what, whose, _s, pattern in KNOWN if pattern]
 # a KUKA .dat: its header lines or its DEFDAT, before anything else

@@ -62,6 +62,7 @@ VENDORS = (
     Entry("yaskawa", "Yaskawa", (".cnd", ".jbi"), (".cnd", ".jbi"), "ucsio.vendors.yaskawa", (),
           heads=("//RBCALIB", "//VAR"), programs=(".jbi",)),
     Entry("ur", "Universal Robots", (".installation",), (".installation",), "ucsio.vendors.ur", (), heads=("<Installation",)),
+    Entry("staubli", "Stäubli", (".dtx",), (".dtx",), "ucsio.vendors.staubli", ()),
 )
 BY_NAME = {e.name: e for e in VENDORS}
 # every suffix a backup's folders and archives are searched for
