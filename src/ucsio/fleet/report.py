@@ -1273,7 +1273,7 @@ def write_views(result, path: str) -> dict[int, str]:
     ``views_folder(path)``, all linking one shared copy of three.js there:
     the report itself stays small and without script. Returns each entry's
     index -> the page's address relative to the report."""
-    from ..files import atomic_write_text
+    from ..files import atomic_write
     from ..picture.page import page, write_library
     from ..picture.scene import scene
 
@@ -1295,9 +1295,9 @@ def write_views(result, path: str) -> dict[int, str]:
             simulated = {"simulated": r.simulated.as_dict(), "measured": r.measured.as_dict(),
                          "name": r.entry.frame, **r.delta}
         name = f"{k + 1:04d}.html"
-        atomic_write_text(os.path.join(folder, name),
-                          page(scene(r.solution.as_dict(), simulated=simulated,
-                                     source=f"{r.entry.name}: {r.entry.frame}"),
-                               library="three.js"))
+        html = page(scene(r.solution.as_dict(), simulated=simulated,
+                          source=f"{r.entry.name}: {r.entry.frame}"), library="three.js")
+        # whole or not at all, without fsync: pictures a rerun makes again, by the thousand
+        atomic_write(os.path.join(folder, name), html.encode("utf-8"), durable=False)
         hrefs[k] = f"{os.path.basename(folder)}/{name}"
     return hrefs

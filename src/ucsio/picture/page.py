@@ -54,14 +54,23 @@ def write_library(folder: str, name: str = "three.js") -> str:
 def _json_block(data) -> str:
     import json
 
-    from ..output import _clean
-    text = json.dumps(_clean(data), ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    try:        # most scenes hold finite numbers only: no pass to clean them
+        text = json.dumps(data, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    except (ValueError, TypeError):
+        from ..output import _clean
+        text = json.dumps(_clean(data), ensure_ascii=False, allow_nan=False,
+                          separators=(",", ":"))
     return text.replace("<", "\\u003c")            # no </script> or <!-- inside the block
 
 
+_VIEWER: list[str] = []     # read once a process: a batch report writes a page per entry
+
+
 def _viewer_js() -> str:
-    with open(os.path.join(HERE, "viewer.js"), encoding="utf-8") as f:
-        return f.read()
+    if not _VIEWER:
+        with open(os.path.join(HERE, "viewer.js"), encoding="utf-8") as f:
+            _VIEWER.append(f.read())
+    return _VIEWER[0]
 
 
 def page(scene: dict, *, library: str | None = None) -> str:
