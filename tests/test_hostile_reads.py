@@ -154,3 +154,24 @@ def test_a_utf16_controller_file_says_so(tmp_path, capsys):
     assert main(["frames", str(f)]) == 2
     assert capsys.readouterr().err == (f"ucsio: {f}: UTF-16 text: ucsio reads controller files "
                                        "as UTF-8 or Windows-1252; save it as UTF-8\n")
+
+
+def test_a_gzip_bomb_is_refused_before_it_fills_the_memory(tmp_path, capsys):
+    """A small .installation whose stream unpacks to more than 64 MiB (here
+    80 MiB of blanks in 80 KB) is one clear error, never read into memory
+    whole; check, frames and patch alike, nothing written."""
+    import gzip
+
+    from ucsio.cli import main
+    from ucsio.parsing.document import GZIP_MAX
+    body = b'<?xml version="1.0"?><Installation>' + b" " * (GZIP_MAX + (16 << 20)) + \
+        b"</Installation>"
+    bomb = tmp_path / "bomb.installation"
+    bomb.write_bytes(gzip.compress(body, compresslevel=1))
+    before = bomb.read_bytes()
+    for args in (["check", bomb], ["frames", bomb],
+                 ["patch", bomb, "--frame", "P", "--set", "0,0,0,0,0,0", "--in-place"]):
+        assert main([str(a) for a in args]) == 2
+        err = capsys.readouterr().err
+        assert "unpacks to more than 64 MiB" in err and "bomb.installation:1:1" in err
+    assert bomb.read_bytes() == before and sorted(tmp_path.iterdir()) == [bomb]

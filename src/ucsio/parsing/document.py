@@ -166,6 +166,10 @@ class Document:
 GZIP_MAGIC = b"\x1f\x8b\x08"      # gzip's two bytes and its one method, deflate
 
 
+#: the most a gzip stream may unpack to (bytes)
+GZIP_MAX = 64 << 20
+
+
 class Gzip:
     """A gzip file's framing: its header kept as it is, its stream deflated
     again at zlib's level 6 (memLevel 8, the default strategy), with the
@@ -186,10 +190,14 @@ class Gzip:
         import zlib
         start = _gzip_header_end(raw)
         inflate = zlib.decompressobj(-zlib.MAX_WBITS)
-        try:
-            body = inflate.decompress(raw[start:])
+        try:        # at most GZIP_MAX: a small file must not unpack into all the memory
+            body = inflate.decompress(raw[start:], GZIP_MAX + 1)
         except zlib.error as exc:
             raise ValueError(f"a gzip stream that does not decompress ({exc})") from None
+        if len(body) > GZIP_MAX:
+            raise ValueError(f"a gzip stream that unpacks to more than {GZIP_MAX >> 20} MiB: "
+                             "not a controller's file (a PolyScope installation is well "
+                             "under a megabyte)")
         rest = inflate.unused_data
         if not inflate.eof or len(rest) < 8:
             raise ValueError("a gzip stream cut short (no end of stream or no trailer)")
