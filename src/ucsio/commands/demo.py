@@ -159,6 +159,9 @@ def print_cell(cell: dict) -> None:
         print()
         step = 4
     patch = cell["patch"]
+    if patch is None:                   # the vendor refuses to patch its files: its reason
+        print(f"{step}. patch: not run: {skipped.get('patch')}")
+        return
     if patch.get("review_copy"):        # FANUC: the controller does not load .va files
         print(f"{step}. review: the listing with the measured frame (a copy for the reviewer; "
               "the controller does not load it)")
