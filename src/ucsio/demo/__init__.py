@@ -150,8 +150,8 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     points = _points(cell, root, cf, sim, sol, skipped) if cell.points else None
     result = _patch(cell, cf, sol, skipped)
     written = None
-    if folder is not None and result is not None:
-        _mkdir(folder / "patched")
+    if folder is not None:
+        _mkdir(folder if result is None else folder / "patched")
     prog = _program(cell, root, sim, sol, folder, skipped) if cell.program_file else None
     measure = (_measure(cell, root, None if out is None else Path(out) / MEASURE_FOLDER,
                         skipped) if cell.measure_file else None)
