@@ -19,8 +19,13 @@ A step runs where the cell's vendor has the capability it needs (its reader
 of robot positions, of taught points, its program writer) and is otherwise
 reported as not run, with the words ``vendors.missing`` gives: the fifth
 cell (Yaskawa) turns each step on by itself when its vendor gains it. A
-cell whose robot side cannot be read yet is not solved: it is listed in
-``not_run`` (its inputs and replay.sh are still written).
+vendor that refuses to patch its files for a stated reason (its
+``patch_refusal``: the sixth cell's Stäubli, whose rotation order is not
+proved) has the patch step reported as not run with that reason, no
+patched copy, and replay.sh's patch commands as comments; the seventh cell
+(Universal Robots) patches a plane feature's points. A cell whose robot
+side cannot be read yet is not solved: it is listed in ``not_run`` (its
+inputs and replay.sh are still written).
 """
 from __future__ import annotations
 
