@@ -22,7 +22,8 @@ from ucsio.results import Result
 def demo(tmp_path_factory):
     out = tmp_path_factory.mktemp("demo")
     result = api.demo(out=out)
-    assert result.ok and [c.cell for c in result.cells] == ["R01", "R02", "R03", "R04", "R05"]
+    assert result.ok and [c.cell for c in result.cells] == ["R01", "R02", "R03", "R04", "R05", "R06",
+                                                                  "R07"]
     (out / "R02_abb" / "working.csv").write_text(
         "point,x,y,z\nfar_left,2600,1400,0\nfar_right,2600,-300,0\nabove,1200,400,900\n")
     return out

@@ -77,7 +77,7 @@ def test_demo_tables_in_each_vendors_names(capsys):
     main(["demo"])
     out = capsys.readouterr().out
     cells = out.split("2. diff: measured - simulated")[1:]
-    assert len(cells) == 5
+    assert len(cells) == 7
     headers = []
     for cell in cells:
         header, rows = _table(cell)
@@ -85,6 +85,7 @@ def test_demo_tables_in_each_vendors_names(capsys):
         headers.append(header[3:])
     assert ["a", "b", "c"] in headers and ["rx", "ry", "rz", "q"] in headers
     assert ["w", "p", "r"] in headers and ["rx", "ry", "rz"] in headers     # FANUC, Yaskawa
+    assert ["roll", "pitch", "yaw"] in headers                                # Universal Robots
 
 
 def test_frames_and_two_file_diff_in_each_vendors_names(demo, capsys, tmp_path):

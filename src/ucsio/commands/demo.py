@@ -5,7 +5,9 @@ and the measurement program's .dat, whose reflector TCP is solved with the
 frame; a FANUC cell, a tracker's point table and the measurement program
 MEASURE.LS, its frame set by a generated TP program; and a Yaskawa cell, a
 point table and the measurement job MEASURE.JBI with TOOL.CND, its frame set
-by a generated SETUF job or a patch of UFRAME.CND's BUSER): solve, diff
+by a generated SETUF job or a patch of UFRAME.CND's BUSER; a Stäubli cell,
+whose patch is refused for the vendor's stated reason and reported as not
+run; and a Universal Robots cell, a plane feature patched): solve, diff
 against the simulated frame (and the taught points of the cell's production
 program), preview the patch. A step the cell's vendor cannot do yet is said
 so and not run; a cell whose robot side ucsio cannot read yet is listed as
@@ -159,6 +161,9 @@ def print_cell(cell: dict) -> None:
         print()
         step = 4
     patch = cell["patch"]
+    if patch is None:                   # the vendor refuses to patch its files: its reason
+        print(f"{step}. patch: not run: {skipped.get('patch')}")
+        return
     if patch.get("review_copy"):        # FANUC: the controller does not load .va files
         print(f"{step}. review: the listing with the measured frame (a copy for the reviewer; "
               "the controller does not load it)")

@@ -19,8 +19,13 @@ A step runs where the cell's vendor has the capability it needs (its reader
 of robot positions, of taught points, its program writer) and is otherwise
 reported as not run, with the words ``vendors.missing`` gives: the fifth
 cell (Yaskawa) turns each step on by itself when its vendor gains it. A
-cell whose robot side cannot be read yet is not solved: it is listed in
-``not_run`` (its inputs and replay.sh are still written).
+vendor that refuses to patch its files for a stated reason (its
+``patch_refusal``: the sixth cell's Stäubli, whose rotation order is not
+proved) has the patch step reported as not run with that reason, no
+patched copy, and replay.sh's patch commands as comments; the seventh cell
+(Universal Robots) patches a plane feature's points. A cell whose robot
+side cannot be read yet is not solved: it is listed in ``not_run`` (its
+inputs and replay.sh are still written).
 """
 from __future__ import annotations
 
@@ -94,6 +99,13 @@ CELLS = (
          extra=("R05_yaskawa/PLACE.JBI", "R05_yaskawa/VAR.DAT"),
          program_input=("var", "R05_yaskawa/VAR.DAT"), points=True, program_file="SETUF2.JBI",
          measure_file="MEAS_UF2.JBI"),
+    Cell("R06", "R06_staubli/CellR06.dtx", "fBattery", "R06_staubli/battery_points.csv",
+         "tSMR",
+         "Stäubli TX2-90 on a CS9 at an EV battery line: the tray frame fBattery as simulated "
+         "vs measured with the reflector tool tSMR of the same .dtx"),
+    Cell("R07", "R07_ur/cell.installation", "Fixture", "R07_ur/fixture_points.csv", "SMR",
+         "Universal Robots UR10e in final assembly: the plane feature Fixture as taught vs "
+         "measured with the installation's TCP SMR; patch writes the plane's points"),
 )
 
 
@@ -108,7 +120,6 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     from ..parsing.controller import load
     from ..review.diff import DEFAULT_TOLERANCE
     from ..geometry.frames import tool_tcp
-    from ..review.patch import patch_frame
     from ..review.save import save
     from ..review.compare import diff_frame
 
@@ -142,21 +153,17 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
     d = diff_frame(cf, cell.frame, sol.pose, tol)
     skipped: list[dict[str, str]] = []
     points = _points(cell, root, cf, sim, sol, skipped) if cell.points else None
-    result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
-    if cell.robot is not None and cell.tcp_solve:
-        result = _with_tcp(cf, result, cell.tool, sol.tcp)
+    result = _patch(cell, cf, sol, skipped)
     written = None
     if folder is not None:
-        _mkdir(folder / "patched")
+        _mkdir(folder if result is None else folder / "patched")
     prog = _program(cell, root, sim, sol, folder, skipped) if cell.program_file else None
     measure = (_measure(cell, root, None if out is None else Path(out) / MEASURE_FOLDER,
                         skipped) if cell.measure_file else None)
     if folder is not None:
         write_inputs(cell, root, folder, sol, label=sim.label, skipped=skipped)
-        if sol.accepted:
+        if sol.accepted and result is not None:
             written = save(result, folder / "patched" / Path(cell.controller).name)
-    label = f"a/{cell.controller}"
-    vendor = vendors.get(cell.vendor)
     extra = {} if prog is None else {"program": prog}
     if measure is not None:
         extra["measurement_program"] = measure
@@ -166,17 +173,39 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
         "warnings": warnings,
         "solve": sol.as_dict(),
         "diff": d,
-        "patch": {"changes": [c.as_dict() for c in result.changes],
-                  "diff": result.diff.replace(f"a/{result.path.lstrip('/')}", label)
-                                     .replace(f"b/{result.path.lstrip('/')}",
-                                              f"b/{cell.controller}"),
-                  "warnings": [w for w in result.warnings if w != vendor.review_copy_warning],
-                  "review_copy": vendor.review_copy_warning is not None,
-                  "written": str(written) if written else None},
+        "patch": None if result is None else _patch_view(cell, result, written),
         "skipped": skipped,
         "folder": str(folder) if folder is not None else None,
         "ok": bool(sol.accepted and d["pass"]),
     }
+
+
+def _patch(cell: Cell, cf, sol, skipped: list):
+    """The patch of the measured frame (and the solved TCP's, where solved
+    with it), or None where the cell's vendor refuses to patch its files for
+    a stated reason (``patch_refusal``): the step is then reported as not
+    run, with that reason."""
+    from ..review.patch import patch_frame
+    refusal = vendors.get(cell.vendor).patch_refusal
+    if refusal is not None:
+        skipped.append({"step": "patch", "why": refusal})
+        return None
+    result = patch_frame(cf, cell.frame, sol.pose, measured=True, check_siblings=False)
+    if cell.robot is not None and cell.tcp_solve:
+        result = _with_tcp(cf, result, cell.tool, sol.tcp)
+    return result
+
+
+def _patch_view(cell: Cell, result, written) -> dict[str, Any]:
+    """The patch as the demo shows it: its diff named as the cell's files are."""
+    vendor = vendors.get(cell.vendor)
+    path = result.path.lstrip("/")
+    return {"changes": [c.as_dict() for c in result.changes],
+            "diff": result.diff.replace(f"a/{path}", f"a/{cell.controller}")
+                               .replace(f"b/{path}", f"b/{cell.controller}"),
+            "warnings": [w for w in result.warnings if w != vendor.review_copy_warning],
+            "review_copy": vendor.review_copy_warning is not None,
+            "written": str(written) if written else None}
 
 
 def robot_side_missing(cell: Cell, root: Path) -> str | None:
@@ -381,13 +410,21 @@ def replay_script(cell: Cell, label: str | None = None, skipped=()) -> str:
         f"ucsio solve {q(meas)} --tool {q(ctl + ':' + cell.tool)} -o solution.json",
         "# 2. diff: the simulated frame against the measured one (exit 1 over tolerance)",
         f"ucsio diff {q(ctl)} --frame {q(cell.frame)} --measured solution.json || true",
-        "# 3. patch: preview, then write a patched copy (the input stays as it is)",
-        f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json",
-        f"ucsio patch {q(ctl)} --frame {q(cell.frame)} --measured solution.json "
-        f"-o {q('patched/' + ctl)}",
-        "# 4. review: every frame of the two files",
-        f"ucsio diff {q(ctl)} {q('patched/' + ctl)}",
+        *_patch_lines(cell, next((s["why"] for s in skipped if s["step"] == "patch"), None)),
         ""])
+
+
+def _patch_lines(cell: Cell, refused: str | None) -> list[str]:
+    """replay.sh's patch and review steps; commented out, with the vendor's
+    reason, where it refuses to patch its files."""
+    ctl = _sh(Path(cell.controller).name)
+    patched = _sh("patched/" + Path(cell.controller).name)
+    patch = f"ucsio patch {ctl} --frame {_sh(cell.frame)} --measured solution.json"
+    commands = [patch, f"{patch} -o {patched}", f"ucsio diff {ctl} {patched}"]
+    if refused is not None:
+        return [f"# 3. patch: not run ({refused}):"] + [f"#   {c}" for c in commands]
+    return ["# 3. patch: preview, then write a patched copy (the input stays as it is)",
+            *commands[:2], "# 4. review: every frame of the two files", commands[2]]
 
 
 def _replay_with_tool(cell: Cell, label: str | None, skipped: dict[str, str]) -> str:

@@ -176,12 +176,29 @@ class Gzip:
     trailer's CRC-32 and length. ``refusal``: why this file cannot be
     written, where deflating its own text does not give its own bytes (an
     other deflater, another zlib, a second member or bytes after the
-    stream): it is read, never written."""
+    stream): it is read, never written. Found out when first asked (a write,
+    ``check``): deflating the whole text again is most of what reading an
+    installation would otherwise cost, and a command that only reads it
+    never needs it."""
 
-    __slots__ = ("header", "refusal")
+    __slots__ = ("header", "_raw", "_body", "_refusal", "_known")
 
-    def __init__(self, header: bytes):
-        self.header, self.refusal = header, None
+    def __init__(self, header: bytes, raw: bytes = b"", body: bytes = b""):
+        self.header, self._raw, self._body = header, raw, body
+        self._refusal: str | None = None
+        self._known = not raw
+
+    @property
+    def refusal(self) -> str | None:
+        if not self._known:
+            import zlib
+            if self.wrap(self._body) != self._raw:
+                self._refusal = (f"this gzip stream is not what zlib {zlib.ZLIB_RUNTIME_VERSION} "
+                                 "writes at level 6 (another deflater, or bytes after the "
+                                 "stream): ucsio reads it but does not write it, nothing "
+                                 "written")
+            self._known, self._raw, self._body = True, b"", b""
+        return self._refusal
 
     @classmethod
     def open(cls, raw: bytes) -> tuple["Gzip", bytes]:
@@ -204,12 +221,7 @@ class Gzip:
         if int.from_bytes(rest[:4], "little") != zlib.crc32(body) or \
                 int.from_bytes(rest[4:8], "little") != len(body) & 0xFFFFFFFF:
             raise ValueError("a gzip stream whose CRC-32 or length does not match what it holds")
-        gz = cls(raw[:start])
-        if gz.wrap(body) != raw:
-            gz.refusal = (f"this gzip stream is not what zlib {zlib.ZLIB_RUNTIME_VERSION} "
-                          "writes at level 6 (another deflater, or bytes after the stream): "
-                          "ucsio reads it but does not write it, nothing written")
-        return gz, body
+        return cls(raw[:start], raw, body), body
 
     def wrap(self, body: bytes) -> bytes:
         import zlib

@@ -113,6 +113,9 @@ class Defaults:
     def as_module(self, text: str) -> str:
         return text                 # a declaration's text reads as a file as it is
 
+    # why ``patch`` refuses every frame of its files, where it does (a stated reason,
+    # which the demo reports as its patch step's): None, frames are written
+    patch_refusal: str | None = None
     declaration_end = assignments = check_patchable = check_siblings = check_readback = None
     in_place_refusal = review_copy_warning = program_writer = None
     frame_program = measurement_program = None

@@ -75,6 +75,8 @@ class Vendor(Protocol):
     declaration_end: Callable[[str, int], int] | None
     # (cf, name) -> every assignment of the frame a program sets it by; None: one declaration
     assignments: Callable[[ControllerFile, str], list[Frame]] | None
+    # why patch refuses every frame of its files (Stäubli's unproved rotation order), or None
+    patch_refusal: str | None
     # (cf, frame, where, warnings): refuses a file the vendor does not write back
     check_patchable: Callable[[ControllerFile, Frame, dict, list[str]], None] | None
     # (frame, force, warnings, where, load): other modules that declare it too

@@ -44,6 +44,11 @@ class Staubli(Defaults):
     same_rotation_tolerance = 0.25e-5
     readback_angle = 5e-4
 
+    @property
+    def patch_refusal(self) -> str:
+        from .convention import REFUSAL
+        return REFUSAL
+
     def where(self, frame) -> dict:
         return {"file": frame.file, "line": frame.line, "col": 1}
 

@@ -143,8 +143,9 @@ def _close(doc: Document, stack: list[Tag], m, at: int) -> None:
 def _attributes(doc: Document, text: str, at: int) -> dict[str, tuple[str, int]]:
     out: dict[str, tuple[str, int]] = {}
     pos = 0
+    match = _ATTR.match             # bound once: a lazy pattern's lookup costs each call
     while True:
-        m = _ATTR.match(text, pos)
+        m = match(text, pos)
         if m is None:
             break
         key = m.group("key")
@@ -320,12 +321,13 @@ def _index(doc: Document, tag: Tag, key: str, default: int) -> int:
 def _numbers(doc: Document, tag: Tag) -> dict[str, Number]:
     """x, y, z, rx, ry, rz as written, each with its span (absent: not here)."""
     out: dict[str, Number] = {}
+    attrs, number = tag.attrs, _NUMBER.match
     for key in COMPONENTS:
-        got = tag.attrs.get(key)
+        got = attrs.get(key)
         if got is None:
             continue
         text, at = got
-        if _NUMBER.match(text) is None:
+        if number(text) is None:
             raise doc.error(f"{key}: not a number: {text[:30]!r}" if text else
                             f"{key}: a number is missing here", at)
         value = float(text)

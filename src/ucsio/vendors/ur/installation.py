@@ -42,20 +42,37 @@ _MARKUP = regex.lazy(
     r"|(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
     r"(?P<attrs>(?:[^<>\"'/]|\"[^\"<]*\"|'[^'<]*'|/(?!>))*+)(?P<empty>/)?>)", 16)   # re.S
 _ATTR = regex.lazy(r"\s+(?P<name>[A-Za-z_][\w.:-]*)\s*=\s*(?:\"(?P<dq>[^\"<]*)\"|'(?P<sq>[^'<]*)')")
-_NUMBER = regex.lazy(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+# a tag whose attributes are well formed (nearly every one): matched once, its
+# attributes read without looking between them; any other markup goes through _MARKUP
+_TAG = regex.lazy(r"<(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
+                  r"(?P<attrs>(?:\s+[A-Za-z_][\w.:-]*\s*=\s*(?:\"[^\"<]*\"|'[^'<]*'))*+)"
+                  r"\s*(?P<empty>/)?>")
+_NUMBER_TEXT = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_NUMBER = regex.lazy(_NUMBER_TEXT)
+# a whole value of 3 or 6 numbers (a position, a rotation vector, a TCP's offset), one
+# match for all: a file holds hundreds; any other value is read number by number
+_VALUES = {n: regex.lazy(",".join([rf"\s*({_NUMBER_TEXT})\s*"] * n)) for n in (3, 6)}
 _SOURCE_FEATURE = regex.lazy(r"(?m)^[ \t]*sourceFeatureId[ \t]*=[ \t]*(?P<id>[^\s]+)")
 _ENTITIES = {"&lt;": "<", "&gt;": ">", "&amp;": "&", "&quot;": '"', "&apos;": "'"}
 
 
 class Element:
     """One XML element: its tag, its attributes (name -> (value, offset of
-    the value's first character)), where its start tag stands, its children."""
+    the value's first character)), where its start tag stands, its children.
+    A tag of one attribute keeps its text, made a dict when first read: most
+    (joint values, the points' TCPs) never are, and a file has thousands."""
 
-    __slots__ = ("tag", "attrs", "start", "children", "parent")
+    __slots__ = ("tag", "_attrs", "start", "children", "parent")
 
-    def __init__(self, tag: str, attrs: dict, start: int, parent: "Element | None"):
-        self.tag, self.attrs, self.start, self.parent = tag, attrs, start, parent
+    def __init__(self, tag: str, attrs, start: int, parent: "Element | None"):
+        self.tag, self._attrs, self.start, self.parent = tag, attrs, start, parent
         self.children: list[Element] = []
+
+    @property
+    def attrs(self) -> dict[str, tuple[str, int]]:
+        if type(self._attrs) is tuple:
+            self._attrs = _attribute_dict(*self._attrs)
+        return self._attrs
 
     def get(self, name: str) -> str | None:
         got = self.attrs.get(name)
@@ -78,25 +95,32 @@ def scan(doc: Document) -> Element:
     text = doc.text
     root = Element("", {}, 0, None)
     top = root
-    pos = text.find("<")
+    # bound once: a file has thousands of tags
+    well_formed, markup, find = _TAG.match, _MARKUP.match, text.find
+    pos = find("<")
     while pos >= 0:
-        m = _MARKUP.match(text, pos)
-        if m is None:
-            raise doc.error("malformed XML: a '<' that begins no tag, comment or declaration",
-                            pos)
-        tag = m.group("tag")
+        m = well_formed(text, pos)
+        checked = m is not None
+        if not checked:
+            m = markup(text, pos)
+            if m is None:
+                raise doc.error("malformed XML: a '<' that begins no tag, comment or "
+                                "declaration", pos)
+        tag, close, empty = m.group("tag", "close", "empty")
         if tag is not None:
-            if m.group("close"):
+            if close:
                 if top is root or top.tag != tag:
                     want = f"</{top.tag}>" if top is not root else "no end tag"
                     raise doc.error(f"malformed XML: </{tag}> where {want} belongs", pos)
                 top = top.parent
             else:
-                element = Element(tag, _attributes(doc, m), pos, top)
+                attrs = _attributes(doc, m) if checked else \
+                    _attributes_checked(doc, m.group("attrs"), m.start("attrs"))
+                element = Element(tag, attrs, pos, top)
                 top.children.append(element)
-                if not m.group("empty"):
+                if not empty:
                     top = element
-        pos = text.find("<", m.end())
+        pos = find("<", m.end())
     if top is not root:
         raise doc.error(f"malformed XML: <{top.tag}> is never closed", top.start)
     if len(root.children) != 1 or root.children[0].tag != "Installation":
@@ -105,9 +129,33 @@ def scan(doc: Document) -> Element:
     return root.children[0]
 
 
-def _attributes(doc: Document, m) -> dict:
-    attrs: dict[str, tuple[str, int]] = {}
+def _attributes(doc: Document, m):
+    """A well-formed tag's attributes (``_TAG``): a dict, or where there is
+    one attribute (no name given twice) its text and offset, for
+    ``Element.attrs``."""
     text, start = m.group("attrs"), m.start("attrs")
+    if text.count("=") == 1:
+        return (text, start)
+    attrs = _attribute_dict(text, start)
+    if len(attrs) < text.count("="):        # a name given twice, or an "=" in a value
+        return _attributes_checked(doc, text, start)
+    return attrs
+
+
+def _attribute_dict(text: str, start: int) -> dict[str, tuple[str, int]]:
+    """Well-formed attributes (``_TAG``'s): name -> (value, its offset)."""
+    attrs: dict[str, tuple[str, int]] = {}
+    for a in _ATTR.finditer(text):
+        name, dq = a.group("name", "dq")
+        attrs[name] = (dq, start + a.start("dq")) if dq is not None else \
+            (a.group("sq"), start + a.start("sq"))
+    return attrs
+
+
+def _attributes_checked(doc: Document, text: str, start: int) -> dict:
+    """The attributes one by one (the slow path: a tag not well formed, a
+    name given twice, an "=" in a value): an error at the first fault."""
+    attrs: dict[str, tuple[str, int]] = {}
     pos = 0
     for a in _ATTR.finditer(text):
         if text[pos:a.start()].strip():
@@ -122,6 +170,20 @@ def _attributes(doc: Document, m) -> dict:
         raise doc.error("malformed XML: an attribute that is not name=\"value\"",
                         start + pos + len(text[pos:]) - len(text[pos:].lstrip()))
     return attrs
+
+
+def _numbers_matched(m, at: int, keys: tuple[str, ...], prefix: str) -> dict | None:
+    """The Numbers of a value ``_VALUES`` matched; None where one is not
+    finite (1e999: the slow path says which)."""
+    out: dict[str, Number] = {}
+    for group, key in enumerate(keys, 1):
+        body = m.group(group)
+        value = float(body)
+        if not math.isfinite(value):
+            return None
+        start = at + m.start(group)
+        out[prefix + key] = Number(Span(start, start + len(body)), body, value)
+    return out
 
 
 def unescape(value: str) -> str:
@@ -141,19 +203,25 @@ def numbers_of(doc: Document, element: Element, attr: str, keys: tuple[str, ...]
     if got is None:
         raise doc.error(f"<{element.tag}> without its {attr} attribute", element.start)
     value, at = got
-    out: dict[str, Number] = {}
+    whole = _VALUES.get(len(keys))
+    m = whole.fullmatch(value) if whole is not None else None
+    if m is not None:
+        out = _numbers_matched(m, at, keys, prefix)
+        if out is not None:
+            return out
+    out = {}
     parts = value.split(",")
     if len(parts) != len(keys):
         raise doc.error(f"{attr}: {len(keys)} numbers expected, {len(parts)} found", at)
     offset = at
+    number = _NUMBER.fullmatch
     for key, part in zip(keys, parts):
-        lead = len(part) - len(part.lstrip())
         body = part.strip()
-        m = _NUMBER.fullmatch(body)
-        if m is None or not math.isfinite(float(body)):
-            raise doc.error(f"{attr}: {body!r} is not a finite number", offset + lead)
-        start = offset + lead
-        out[prefix + key] = Number(Span(start, start + len(body)), body, float(body))
+        start = offset + len(part) - len(part.lstrip())
+        value = float(body) if number(body) is not None else math.nan
+        if not math.isfinite(value):
+            raise doc.error(f"{attr}: {body!r} is not a finite number", start)
+        out[prefix + key] = Number(Span(start, start + len(body)), body, value)
         offset += len(part) + 1
     return out
 
@@ -176,11 +244,14 @@ def point_numbers(doc: Document, node: Element, prefix: str = "") -> dict[str, N
 
 
 def parse(doc: Document, full: bool = False) -> ControllerFile:
-    """An installation's TCPs and features. ``full`` reads the same: the
-    scan checks every tag either way."""
+    """An installation's TCPs and features. ``full`` (check) reads the same,
+    the scan checking every tag either way, and also says whether this
+    Python's zlib writes the stream back (``gzip-stream``)."""
     cf = ControllerFile(doc, VENDOR)
     root = scan(doc)
-    if doc.gzip is not None and doc.gzip.refusal is not None:
+    # check's (``full``): whether this zlib writes the stream back costs a deflate of
+    # the whole text, which a command that only reads the file does not need
+    if full and doc.gzip is not None and doc.gzip.refusal is not None:
         cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
     cf.extra["safety_features"] = _safety_features(root, doc)
     for element in walk(root):

@@ -1,0 +1,68 @@
+"""The lean read of a Universal Robots installation (issue 30's speed line):
+reading one deflates nothing (whether this zlib writes the stream back is
+found out when a write or ``check`` asks), and the fast paths of the XML
+scan (a well-formed tag matched once, a value of 3 or 6 numbers matched
+whole) read what the careful path reads and leave its errors to it."""
+from __future__ import annotations
+
+import pytest
+
+import ur_cell
+from ucsio.cli import main
+from ucsio.parsing.document import Document, Gzip
+from ucsio.vendors.ur import installation
+
+
+def write(tmp_path, xml: str):
+    path = tmp_path / "cell.installation"
+    path.write_bytes(ur_cell.installation(xml))
+    return path
+
+
+def test_reading_deflates_nothing_and_check_still_proves_the_stream(tmp_path, monkeypatch,
+                                                                     capsys):
+    path = write(tmp_path, ur_cell.XML)
+    calls = []
+    deflate = Gzip.wrap
+    monkeypatch.setattr(Gzip, "wrap", lambda self, body: calls.append(1) or deflate(self, body))
+    assert main(["frames", str(path)]) == 0 and "Table" in capsys.readouterr().out
+    assert calls == []
+    assert main(["check", str(path)]) == 0 and "round trip ok" in capsys.readouterr().out
+    assert calls            # check deflates: the stream proved, and the round trip
+
+
+def every_element(xml: str):
+    return list(installation.walk(installation.scan(Document(ur_cell.installation(xml),
+                                                             "cell.installation"))))
+
+
+def test_the_fast_attributes_are_the_careful_ones():
+    xml = ur_cell.XML.replace('name="Gripper"', "name='Grip=per'")    # an "=" in a value
+    doc = Document(ur_cell.installation(xml), "cell.installation")
+    elements = every_element(xml)
+    assert len(elements) > 50
+    for element in elements:
+        m = installation._MARKUP.match(doc.text, element.start)
+        careful = installation._attributes_checked(doc, m.group("attrs"), m.start("attrs"))
+        assert element.attrs == careful, element.tag
+    assert "Grip=per" in [e.get("name") for e in elements]
+
+
+@pytest.mark.parametrize("edit, says, where", [
+    # a name given twice in a tag that also holds an "=" in a value
+    (lambda x: x.replace('name="Gripper"', 'name="a=b" name="x"'), "given twice", 'name="x"'),
+    # a value of 6 numbers that matches whole, one of them not finite
+    (lambda x: x.replace('offset="0.0, 0.0, 0.15,', 'offset="0.0, 1e999, 0.15,'),
+     "'1e999' is not a finite number", "1e999"),
+    # an attribute without quotes: not a well-formed tag, the careful path says where
+    (lambda x: x.replace('name="Gripper"', "name=Gripper"), 'not name="value"', "name=Gripper"),
+])
+def test_the_careful_path_still_names_the_fault(tmp_path, capsys, edit, says, where):
+    xml = edit(ur_cell.XML)
+    path = write(tmp_path, xml)
+    assert main(["frames", str(path)]) == 2
+    err = capsys.readouterr().err
+    at = xml.index(where)
+    line = xml.count("\n", 0, at) + 1
+    col = at - (xml.rfind("\n", 0, at) + 1) + 1
+    assert says in err and f"cell.installation:{line}:{col}: " in err, err
