@@ -132,3 +132,17 @@ def test_a_vendor_that_refuses_patch_is_reported_by_capability(monkeypatch, tmp_
     assert not (tmp_path / "R07_ur" / "patched").exists()
     assert "# 3. patch: not run (a reason of the vendor's own):" in \
         (tmp_path / "R07_ur" / "replay.sh").read_text()
+
+
+def test_a_stream_this_zlib_does_not_reproduce_still_runs_the_demo(monkeypatch, tmp_path):
+    """The UR cell's installation is written back only where this Python's
+    zlib reproduces its stream; where another zlib does not (zlib-ng, say),
+    the demo still runs: the patch step is not run, with the reason, and no
+    copy is written."""
+    from ucsio.parsing.document import Gzip
+    why = "this gzip stream is not what zlib X writes at level 6 (stand-in)"
+    monkeypatch.setattr(Gzip, "refusal", property(lambda self: why))
+    cell = run("R07", tmp_path)
+    assert cell["patch"] is None and cell["ok"] is True
+    assert {"step": "patch", "why": why} in cell["skipped"]
+    assert not (tmp_path / "R07_ur" / "patched").exists()

@@ -183,10 +183,12 @@ def run_cell(cell: Cell, root: Path, out: str | os.PathLike | None = None,
 def _patch(cell: Cell, cf, sol, skipped: list):
     """The patch of the measured frame (and the solved TCP's, where solved
     with it), or None where the cell's vendor refuses to patch its files for
-    a stated reason (``patch_refusal``): the step is then reported as not
-    run, with that reason."""
+    a stated reason (``patch_refusal``), or this file is read but not
+    written here (``Document.write_refusal``: a gzip stream this Python's
+    zlib does not reproduce): the step is then reported as not run, with
+    that reason, and the demo still runs everywhere."""
     from ..review.patch import patch_frame
-    refusal = vendors.get(cell.vendor).patch_refusal
+    refusal = vendors.get(cell.vendor).patch_refusal or cf.document.write_refusal
     if refusal is not None:
         skipped.append({"step": "patch", "why": refusal})
         return None

@@ -139,6 +139,12 @@ class Document:
             return self.gzip.wrap(body)
         return body
 
+    @property
+    def write_refusal(self) -> str | None:
+        """Why this file is read but never written (a gzip stream this
+        Python's zlib does not reproduce), or None."""
+        return self.gzip.refusal if self.gzip is not None else None
+
     def to_bytes(self) -> bytes:
         """The bytes of the unedited text: the file's own (a gzip stream this
         Python cannot reproduce: the file's, though no edit is written)."""
