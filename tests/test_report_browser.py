@@ -213,3 +213,24 @@ def test_measurement_error_bars_carry_readable_names(page):
     assert got["names"] == got["bars"] and len(got["names"]) >= 90
     assert got["font"] >= 9 and got["inside"] and got["upright"]
     assert got["minGap"] >= 0.95 * got["font"]          # a line apart: readable side by side
+
+
+def test_an_entrys_linked_picture_opens_with_the_shared_library(chromium, report):
+    """issue 29 point 2: an entry's link opens its picture from disk; the
+    page asks for nothing but itself and the one three.js beside it, draws
+    without error, and its markers are that entry's points."""
+    import re
+    html = report.read_text(encoding="utf-8")
+    links = re.findall(r'<a class="view" href="([^"]+)"', html)
+    assert links
+    data = json.loads(html.split('id="ucsio-data">', 1)[1].split("</script>", 1)[0])
+    solved = [e for e in data["entries"] if e.get("points")]
+    for href, entry in ((links[0], solved[0]), (links[-1], solved[-1])):
+        target = (report.parent / href).resolve()
+        with Browser(1280, 900, executable=chromium) as b:
+            b.load(target)
+            assert b.errors == []
+            assert b.evaluate("document.body.dataset.ready") == "1"
+            assert b.requests == [target.as_uri(), (target.parent / "three.js").as_uri()]
+            names = [m["name"] for m in b.evaluate("ucsioView.markers('tracker')")]
+        assert names == [p["name"] for p in entry["points"]]
