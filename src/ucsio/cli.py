@@ -127,6 +127,11 @@ def _refuse_unknown(parser: argparse.ArgumentParser, args, extras: list[str]) ->
     raise UsageError(f"{target.prog}: {message} (see {target.prog} --help)")
 
 
+def _registry():
+    from .vendors import VENDORS      # the registry alone: no vendor's package is imported
+    return VENDORS
+
+
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The argument parser; given a ``command``, only that subcommand (its
     module imported, its options built): building all seven was a large part
@@ -134,7 +139,8 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     command), every subcommand, so help and suggestions list them all."""
     parser = _Parser(
         prog="ucsio",
-        description="Measured user frames for ABB, KUKA and FANUC controller files.")
+        description="Measured user frames for robot controller files: "
+                    + ", ".join(e.title for e in _registry()) + ".")
     parser.add_argument("--version", action="version", version=f"ucsio {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
