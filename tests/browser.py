@@ -206,8 +206,10 @@ class Browser:
             if msg.get("method") == method:
                 return msg.get("params", {})
 
-    def load(self, path: str | os.PathLike) -> None:
-        url = Path(path).resolve().as_uri()
+    def load(self, path: str | os.PathLike, fragment: str | None = None) -> None:
+        """Open a file; ``fragment``: the address's #part (a report's picture
+        of entry k is view.html#k)."""
+        url = Path(path).resolve().as_uri() + (f"#{fragment}" if fragment else "")
         self.call("Page.navigate", url=url)
         self.wait_for("Page.loadEventFired")
         # let late console messages (CSP reports) arrive

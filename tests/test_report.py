@@ -406,24 +406,26 @@ def test_station_views_draw_every_frame_where_it_moved(report):
 
 
 def test_each_solved_entry_links_its_picture(report):
-    """issue 29 point 2: every solved entry's details link its 3D picture, a
-    page of ``ucsio view`` in REPORT.views beside the report, all pages
-    sharing one three.js there (the report itself stays without script);
-    each page's scene holds that entry's frame and points."""
+    """issue 29 point 2: every solved entry's details link its 3D picture:
+    REPORT.views/view.html#k beside the report, one page that draws entry k
+    from one data file of every entry's fit and point pairs (entries.js),
+    with one shared three.js there (the report itself stays without
+    script); the data holds each entry's points and fit as the JSON has them."""
     from ucsio.picture.page import three_version
     path, doc = report
     folder = path.with_suffix(".views")
     links = [a["href"] for t, a in _parse(path).tags if t == "a" and a.get("class") == "view"]
     solved = [k for k, e in enumerate(doc["entries"]) if e.get("points")]
-    assert links == [f"{folder.name}/{k + 1:04d}.html" for k in solved]
+    assert links == [f"{folder.name}/view.html#{k + 1}" for k in solved]
+    assert sorted(p.name for p in folder.iterdir()) == ["entries.js", "three.js", "view.html"]
     assert three_version() in (folder / "three.js").read_text(encoding="utf-8")[:200]
     assert path.read_bytes().count(b"<script") == 1          # the JSON data block alone
-    for k in solved[:5] + solved[-5:]:
-        page = _parse(folder / f"{k + 1:04d}.html")
-        scene = json.loads(page.script["ucsio-scene"])
-        e = doc["entries"][k]
-        assert [p["name"] for p in scene["points"]] == [p["name"] for p in e["points"]]
-        origin = scene["measured"]["origin"]
-        assert origin == pytest.approx([e["frame"]["x"], e["frame"]["y"], e["frame"]["z"]],
-                                       abs=1e-6)
-        assert any(t == "script" and a.get("src") == "three.js" for t, a in page.tags)
+    text = (folder / "entries.js").read_text(encoding="ascii")
+    assert text.startswith("window.UCSIO_ENTRIES = ") and text.endswith(";\n")
+    data = json.loads(text[len("window.UCSIO_ENTRIES = "):-2])
+    assert sorted(map(int, data)) == [k + 1 for k in solved]
+    for k in solved:
+        e, v = doc["entries"][k], data[str(k + 1)]
+        assert [p[0] for p in v["points"]] == [p["name"] for p in e["points"]]
+        assert [p[3] for p in v["points"]] == [p["used"] for p in e["points"]]
+        assert v["frame"]["t"] == pytest.approx([e["frame"][c] for c in "xyz"], abs=1e-9)

@@ -216,21 +216,63 @@ def test_measurement_error_bars_carry_readable_names(page):
 
 
 def test_an_entrys_linked_picture_opens_with_the_shared_library(chromium, report):
-    """issue 29 point 2: an entry's link opens its picture from disk; the
-    page asks for nothing but itself and the one three.js beside it, draws
-    without error, and its markers are that entry's points."""
+    """issue 29 point 2: an entry's link opens its picture from disk: the
+    page asks for nothing but itself, the report's data file and the one
+    three.js beside it, draws without error, and the scene it builds in the
+    browser is the one ucsio's own picture.scene makes of that entry (every
+    number), with one SVG circle per point in each projection."""
     import re
+
+    from ucsio.picture.scene import scene
     html = report.read_text(encoding="utf-8")
     links = re.findall(r'<a class="view" href="([^"]+)"', html)
-    assert links
-    data = json.loads(html.split('id="ucsio-data">', 1)[1].split("</script>", 1)[0])
-    solved = [e for e in data["entries"] if e.get("points")]
-    for href, entry in ((links[0], solved[0]), (links[-1], solved[-1])):
-        target = (report.parent / href).resolve()
+    folder = report.parent / links[0].split("/")[0]
+    text = (folder / "entries.js").read_text(encoding="ascii")
+    data = json.loads(text[len("window.UCSIO_ENTRIES = "):-2])
+    checked = 0
+    for href in links[:3] + links[-3:]:
+        page, _, key = href.partition("#")
+        target = (report.parent / page).resolve()
+        v = data[key]
         with Browser(1280, 900, executable=chromium) as b:
-            b.load(target)
+            b.load(target, fragment=key)
             assert b.errors == []
             assert b.evaluate("document.body.dataset.ready") == "1"
-            assert b.requests == [target.as_uri(), (target.parent / "three.js").as_uri()]
+            assert [u.split("#")[0] for u in b.requests] == [
+                target.as_uri(), (folder / "entries.js").resolve().as_uri(),
+                (folder / "three.js").resolve().as_uri()]
+            got = json.loads(b.evaluate("document.getElementById('ucsio-scene').textContent"))
+            circles = b.evaluate("[...document.querySelectorAll('#projections svg')]"
+                                 ".map(s => s.querySelectorAll('circle.point').length)")
             names = [m["name"] for m in b.evaluate("ucsioView.markers('tracker')")]
-        assert names == [p["name"] for p in entry["points"]]
+        solution = {"frame": {"x": v["frame"]["t"][0], "y": v["frame"]["t"][1],
+                              "z": v["frame"]["t"][2], "q": v["frame"]["q"]},
+                    "accepted": v["accepted"], "rms": v["rms"], "max": v["max"],
+                    "points": [{"name": n, "laser": la, "robot": ro, "used": u, "excluded_by": x}
+                               for n, la, ro, u, x in v["points"]],
+                    "working_points": v["working"], "worst": v["worst"]}
+        simulated = None
+        if v.get("simulated"):
+            sv = v["simulated"]
+            pose = lambda p: dict(zip("xyz", p["t"]), q=p["q"])      # noqa: E731
+            simulated = {"simulated": pose(sv["sim"]), "measured": pose(sv["mea"]),
+                         "name": sv["name"], **sv["delta"]}
+        want = scene(solution, simulated=simulated, source=v["title"])
+        assert names == [p["name"] for p in want["points"]]
+        assert circles == [len(want["points"])] * 3
+        for g_, w in zip(got["points"], want["points"]):
+            for key_ in ("laser", "tracker", "robot", "d", "drawn"):
+                assert g_[key_] == pytest.approx(w[key_], rel=1e-9, abs=1e-9), key_
+            assert g_["residual"] == pytest.approx(w["residual"], rel=1e-9, abs=1e-12)
+            assert (g_["used"], g_["clipped"]) == (w["used"], w["clipped"])
+        for key_ in ("center", "size", "magnify", "axis_length", "scale_bar", "marker"):
+            assert got[key_] == pytest.approx(want[key_], rel=1e-9, abs=1e-9), key_
+        for f in ("measured", "simulated"):
+            if want[f] is None:
+                assert got[f] is None
+                continue
+            assert got[f]["origin"] == pytest.approx(want[f]["origin"], abs=1e-6)
+            for a, b in zip(got[f]["axes"], want[f]["axes"]):
+                assert a == pytest.approx(b, abs=1e-9)
+        checked += 1
+    assert checked == 6

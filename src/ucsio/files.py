@@ -69,7 +69,7 @@ def _kind(mode: int) -> str:
 
 def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
                  check=None, owner: tuple[int, int] | None = None,
-                 backup: bool = False, durable: bool = True) -> tuple[str, str | None]:
+                 backup: bool = False) -> tuple[str, str | None]:
     """Write ``data`` to ``path`` through a temporary file in the same folder,
     fsync, then ``os.replace``; a link is written through (``write_target``).
     A file that is replaced keeps its permissions and owner (a read-only
@@ -81,10 +81,7 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
     after the new bytes are safely on disk and removed again if the rename
     fails: a failure at any step leaves every file as it was and no
     temporary file behind. OS errors become one UcsioError naming the file.
-    ``durable=False`` leaves out the two fsyncs (still a whole file or none:
-    the rename is atomic) for output that a rerun makes again, written by
-    the thousand (a batch report's pictures), where they cost most of the
-    time. Returns (the file written, the backup or None)."""
+    Returns (the file written, the backup or None)."""
     import tempfile   # only writers pay for it: listing starts without it
 
     path = write_target(path)
@@ -101,8 +98,7 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
-            if durable:
-                os.fsync(fh.fileno())
+            os.fsync(fh.fileno())
         mode, owner = _kept_mode_and_owner(path, mode, owner)
         os.chmod(tmp, mode)
         if owner is not None and hasattr(os, "chown"):
@@ -125,8 +121,6 @@ def atomic_write(path: str | os.PathLike, data: bytes, mode: int | None = None,
         if isinstance(exc, OSError):
             raise UcsioError(f"cannot write: {exc.strerror or exc}", file=path) from None
         raise
-    if not durable:
-        return path, bak
     try:  # make the rename durable
         dfd = os.open(folder, os.O_RDONLY)
         try:

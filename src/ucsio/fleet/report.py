@@ -1268,17 +1268,23 @@ def views_folder(path: str) -> str:
 
 
 def write_views(result, path: str) -> dict[int, str]:
-    """Each solved entry's picture as ``ucsio view`` draws it (its points,
-    residuals, the simulated and the measured frame), one page per entry in
-    ``views_folder(path)``, all linking one shared copy of three.js there:
-    the report itself stays small and without script. Returns each entry's
-    index -> the page's address relative to the report."""
-    from ..files import atomic_write
-    from ..picture.page import page, write_library
-    from ..picture.scene import scene
+    """Each solved entry's picture, as ``ucsio view`` draws it (its points,
+    residuals, the simulated and the measured frame): one page in
+    ``views_folder(path)`` that draws the entry its address names
+    (``view.html#12``) from one data file of every entry's fit and point
+    pairs (``entries.js``), with one shared copy of three.js there. The
+    report itself stays small and without script, and a fleet's pictures
+    cost three files, not one per entry. Returns each entry's index -> its
+    picture's address relative to the report."""
+    import json
 
-    solved = [(k, r) for k, r in enumerate(result.entries) if r.solution is not None]
-    if not solved:
+    from ..files import atomic_write, atomic_write_text
+    from ..picture.page import report_page, write_library
+
+    entries = {str(k + 1): _view_entry(r) for k, r in enumerate(result.entries)
+               if r.solution is not None and r.solution.points
+               and all(p.laser is not None for p in r.solution.points)}
+    if not entries:
         return {}
     folder = views_folder(path)
     try:
@@ -1288,16 +1294,29 @@ def write_views(result, path: str) -> dict[int, str]:
         raise UcsioError(f"--report: cannot make the folder for the pictures: "
                          f"{exc.strerror or exc}", file=folder) from None
     write_library(folder)
-    hrefs = {}
-    for k, r in solved:
-        simulated = None
-        if r.simulated is not None and r.measured is not None and r.delta is not None:
-            simulated = {"simulated": r.simulated.as_dict(), "measured": r.measured.as_dict(),
-                         "name": r.entry.frame, **r.delta}
-        name = f"{k + 1:04d}.html"
-        html = page(scene(r.solution.as_dict(), simulated=simulated,
-                          source=f"{r.entry.name}: {r.entry.frame}"), library="three.js")
-        # whole or not at all, without fsync: pictures a rerun makes again, by the thousand
-        atomic_write(os.path.join(folder, name), html.encode("utf-8"), durable=False)
-        hrefs[k] = f"{os.path.basename(folder)}/{name}"
-    return hrefs
+    data = json.dumps(entries, separators=(",", ":"), allow_nan=True)
+    data = data.replace("NaN", "null").replace("-Infinity", "null").replace("Infinity", "null")
+    atomic_write(os.path.join(folder, "entries.js"),
+                 ("window.UCSIO_ENTRIES = " + data + ";\n").encode("ascii"))
+    atomic_write_text(os.path.join(folder, "view.html"), report_page())
+    base = os.path.basename(folder)
+    return {int(k) - 1: f"{base}/view.html#{k}" for k in entries}
+
+
+def _view_entry(r) -> dict:
+    """An entry's numbers for the picture: the fit, the point pairs, the
+    working points, and the simulated frame as ``diff`` compares it."""
+    s = r.solution
+    d = {"title": f"{r.entry.name}: {r.entry.frame}", "frame": {"t": list(s.pose.t),
+                                                            "q": list(s.pose.q)},
+         "accepted": s.accepted, "reason": s.reason, "rms": s.rms, "max": s.max,
+         "points": [[p.name, list(p.laser), list(p.robot), p.used, p.excluded_by]
+                    for p in s.points],
+         "working": s.working_points or [], "worst": s.worst}
+    if r.simulated is not None and r.measured is not None and r.delta is not None:
+        d["simulated"] = {
+            "sim": {"t": list(r.simulated.t), "q": list(r.simulated.q)},
+            "mea": {"t": list(r.measured.t), "q": list(r.measured.q)}, "name": r.entry.frame,
+            "delta": {k: r.delta[k] for k in ("dx", "dy", "dz", "da", "db", "dc", "angle",
+                                              "dist", "dt_mean", "group", "pass")}}
+    return d

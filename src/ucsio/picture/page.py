@@ -136,6 +136,42 @@ def _legend(s: dict) -> str:
     return f'<ul id="legend" class="legend">{lis}</ul>'
 
 
+def report_page(*, library: str = "three.js", data: str = "entries.js") -> str:
+    """The one page of a batch report's pictures: the same layout as
+    ``page``, filled in the browser by report_view.js from ``data`` (every
+    entry's fit and point pairs) for the entry the address's #k names, so a
+    fleet's pictures cost one page and one data file, not a page each."""
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>ucsio view</title>
+<style>{CSS}</style></head>
+<body>
+<h1>ucsio view</h1>
+<p class="facts"></p>
+<div id="stage"><div id="view3d" aria-label="3D view: drag to rotate, right-drag or shift-drag
+ to pan, wheel to zoom"></div><div id="labels"></div>
+<div id="tools"><button id="reset" type="button">reset view</button>
+<span id="scale"><span id="scale-bar"></span> <span id="scale-text"></span></span></div>
+<div id="info" aria-live="polite">hover or click a point for its numbers</div>
+<noscript><p>This page draws from the report's data with script; ucsio view SOLUTION.json
+writes a page whose projections need none.</p></noscript></div>
+<ul id="legend" class="legend"></ul>
+<section id="static"><h2>Projections (mm, robot world (the measured frame's parent))</h2>
+<div id="projections"></div></section>
+<script src="{escape(data)}"></script>
+<script>{_asset("report_view.js")}</script>
+<script src="{escape(library)}"></script>
+<script>{_viewer_js()}</script>
+</body></html>
+"""
+
+
+def _asset(name: str) -> str:
+    with open(os.path.join(HERE, name), encoding="utf-8") as f:
+        return f.read()
+
+
 CSS = """
 body{font:14px/1.4 system-ui,sans-serif;margin:16px;color:#222;background:#fff}
 h1{font-size:18px;margin:0 0 4px}h2{font-size:15px}
