@@ -698,19 +698,13 @@ def station_of(e: dict) -> str:
     return st or "\u2013"
 
 
-def _nice(v: float) -> float:
-    """The 1-2-5 value at or below ``v`` (> 0)."""
-    k = 10.0 ** math.floor(math.log10(v))
-    return next(m * k for m in (5.0, 2.0, 1.0) if m * k <= v)
-
-
 def _axes_xy(q: Any) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """A frame's x and y axes (unit quaternion w, x, y, z) seen from above."""
     if not isinstance(q, (list, tuple)) or len(q) != 4 or any(_num(v) is None for v in q):
         return None
-    w, x, y, z = (float(v) for v in q)
-    return ((1 - 2 * (y * y + z * z), 2 * (x * y + w * z)),
-            (2 * (x * y - w * z), 1 - 2 * (x * x + z * z)))
+    from ..geometry.rotations import quat_to_matrix
+    m = quat_to_matrix(tuple(float(v) for v in q))
+    return (m[0][0], m[1][0]), (m[0][1], m[1][1])
 
 
 def station_svg(name: str, entries: Sequence[dict]) -> str:
@@ -720,6 +714,7 @@ def station_svg(name: str, entries: Sequence[dict]) -> str:
     magnified by a stated factor, an arrow between); rejected and failed
     entries a ring alone. Scale bar in mm; numbers for machines in
     ``data-*`` attributes."""
+    from ..picture.scene import nice      # the 1-2-5 steps the pictures' scale bars take
     rows = []
     for e in entries:
         sim = _dict(e.get("simulated"))
@@ -742,7 +737,7 @@ def station_svg(name: str, entries: Sequence[dict]) -> str:
 
     shifts = [math.hypot(r[3], r[4]) for r in rows if r[3] is not None and r[4] is not None]
     far = max(shifts, default=0.0)
-    factor = _nice(0.08 * span / far) if far > 0 else 1.0       # the largest shift ~8 % of the view
+    factor = nice(0.08 * span / far) if far > 0 else 1.0       # the largest shift ~8 % of the view
     factor = max(factor, 1.0)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" '
            f'viewBox="0 0 {W} {H}" role="img" class="station-view" data-station="{_e(name)}" '
@@ -769,7 +764,7 @@ def station_svg(name: str, entries: Sequence[dict]) -> str:
                        f'fill="{color}"/>')
         out.append(f'<text x="{px + 7:.1f}" y="{py + 14:.1f}" font-size="10">'
                    f'{_e(_short(str(e.get("frame_name") or e.get("name") or "")))}</text></g>')
-    bar = _nice(span / 4)
+    bar = nice(span / 4)
     mid = (H - 24) / 2
     out.append(f'<line x1="{pad}" x2="{pad + bar * scale:.1f}" y1="{H - 12}" y2="{H - 12}" '
                f'stroke="#1d2329" stroke-width="2"/><text x="{pad}" y="{H - 16}" '

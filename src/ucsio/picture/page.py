@@ -54,23 +54,15 @@ def write_library(folder: str, name: str = "three.js") -> str:
 def _json_block(data) -> str:
     import json
 
-    try:        # most scenes hold finite numbers only: no pass to clean them
-        text = json.dumps(data, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
-    except (ValueError, TypeError):
-        from ..output import _clean
-        text = json.dumps(_clean(data), ensure_ascii=False, allow_nan=False,
-                          separators=(",", ":"))
+    from ..output import _clean
+    text = json.dumps(_clean(data), ensure_ascii=False, allow_nan=False, separators=(",", ":"))
     return text.replace("<", "\\u003c")            # no </script> or <!-- inside the block
 
 
-_VIEWER: list[str] = []     # read once a process: a batch report writes a page per entry
-
-
-def _viewer_js() -> str:
-    if not _VIEWER:
-        with open(os.path.join(HERE, "viewer.js"), encoding="utf-8") as f:
-            _VIEWER.append(f.read())
-    return _VIEWER[0]
+def _asset(name: str) -> str:
+    """A script shipped beside this module (viewer.js, report_view.js)."""
+    with open(os.path.join(HERE, name), encoding="utf-8") as f:
+        return f.read()
 
 
 def page(scene: dict, *, library: str | None = None) -> str:
@@ -98,7 +90,7 @@ def page(scene: dict, *, library: str | None = None) -> str:
 {projections(scene)}</section>
 <script type="application/json" id="ucsio-scene">{_json_block(scene)}</script>
 {lib}
-<script>{_viewer_js()}</script>
+<script>{_asset("viewer.js")}</script>
 </body></html>
 """
 
@@ -162,14 +154,9 @@ writes a page whose projections need none.</p></noscript></div>
 <script src="{escape(data)}"></script>
 <script>{_asset("report_view.js")}</script>
 <script src="{escape(library)}"></script>
-<script>{_viewer_js()}</script>
+<script>{_asset("viewer.js")}</script>
 </body></html>
 """
-
-
-def _asset(name: str) -> str:
-    with open(os.path.join(HERE, name), encoding="utf-8") as f:
-        return f.read()
 
 
 CSS = """
