@@ -199,16 +199,13 @@ def planned_spread(planned, joint: bool, spread, **judge):
     planned flange poses, the orientations ``program --measure --spread``
     writes stand in for them, at --spread or the least spread that holds the
     threshold (``judge``: at, threshold, reach and the noise)."""
-    import math
     from dataclasses import replace
 
     from ..method import spread as pattern
     from ..method.plan import least_spread
 
     if spread is not None:
-        if not (math.isfinite(spread) and 0 < spread <= pattern.MOST):
-            raise UcsioError(f"--spread {spread:g}: a turn of more than 0 and at most "
-                             f"{pattern.MOST:g} deg")
+        pattern.check(spread)
         if not joint:
             raise UcsioError("--spread plans the orientations a TCP solved with the frame "
                              "needs: it goes with --tcp solve")

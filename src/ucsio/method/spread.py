@@ -17,11 +17,20 @@ import math
 
 import numpy as np
 
+from ..errors import UcsioError
+
 #: the tool's axis each point turns about, in turn (None: not turned)
 AXES = (None, (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0))
 #: the spreads ``plan`` tries, least first, where none is given (deg)
 STEPS = tuple(range(5, 95, 5))
 MOST = 90.0         # beyond it a reflector faces too far from the tracker to be seen
+
+
+def check(spread: float) -> float:
+    """--spread as a pattern can hold it: more than 0, at most MOST deg."""
+    if not (math.isfinite(spread) and 0 < spread <= MOST):
+        raise UcsioError(f"--spread {spread:g}: a turn of more than 0 and at most {MOST:g} deg")
+    return spread
 
 
 def tilts(n: int, spread: float) -> np.ndarray:

@@ -165,13 +165,10 @@ def _spread(rotations, spread, planned):
     the reflector stays on the point and the flange moves round it."""
     if spread is None:
         return rotations
-    import math
-
     import numpy as np
 
-    from ..method.spread import MOST, tilts
-    if not (math.isfinite(spread) and 0 < spread <= MOST):
-        raise UcsioError(f"--spread {spread:g}: a turn of more than 0 and at most {MOST:g} deg")
+    from ..method.spread import check, tilts
+    check(spread)
     if planned.flange is not None:
         raise UcsioError("--spread: the plan gives each point's orientation (its robot_* "
                          "columns); the spread is theirs", file=planned.path)
