@@ -499,3 +499,34 @@ def test_docs_problem_matcher_reads_real_concise_output(cell):
     # and it takes nothing else: full's per-file lines and total are not problems
     full = run("check", *INPUTS, cwd=cell).stdout.splitlines()
     assert [l for l in full if regexp.search(l)] == [l for l in lines if l in full]
+
+
+
+def test_a_tables_lines_are_its_cells_padded_one_by_one():
+    """``output.table`` formats a line at once where every row has a cell
+    for each column: the same text as padding cell by cell (the way it
+    pads a ragged table), on random cells, widths and alignments."""
+    import random
+
+    from ucsio.output import table
+
+    def by_cell(headers, rows, right):
+        rows = [[str(c) for c in r] for r in rows]
+        widths = [len(h) for h in headers]
+        for r in rows:
+            for i, c in enumerate(r):
+                widths[i] = max(widths[i], len(c))
+        def line(cells):
+            return "  ".join(c.rjust(widths[i]) if i in right else c.ljust(widths[i])
+                             for i, c in enumerate(cells)).rstrip()
+        return "\n".join([line(headers), line(["-" * w for w in widths])]
+                         + [line(r) for r in rows])
+
+    rng = random.Random(30)
+    cells = ["", "x", "{}", "{0}", "Stäubli", "-1.250", " a ", "UF1@2", None, 3.5, 12]
+    for _ in range(300):
+        n = rng.randint(1, 7)
+        headers = [rng.choice(["name", "x", "", "{y}", "roll"]) for _ in range(n)]
+        rows = [[rng.choice(cells) for _ in range(n)] for _ in range(rng.randint(0, 6))]
+        right = {i for i in range(n) if rng.random() < 0.5}
+        assert table(headers, rows, right) == by_cell(headers, rows, right)

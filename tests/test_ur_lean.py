@@ -66,3 +66,59 @@ def test_the_careful_path_still_names_the_fault(tmp_path, capsys, edit, says, wh
     line = xml.count("\n", 0, at) + 1
     col = at - (xml.rfind("\n", 0, at) + 1) + 1
     assert says in err and f"cell.installation:{line}:{col}: " in err, err
+
+
+def test_a_name_given_twice_where_a_listing_never_looks_is_checks_error(tmp_path, capsys):
+    """Attributes are read when asked for (as the .dtx reader reads them):
+    a listing reads the frames' tags; ``check`` reads every tag and names
+    the place."""
+    where = 'buildNumber="2"'
+    xml = ur_cell.XML.replace('buildNumber="108249"', 'buildNumber="108249" ' + where)
+    path = write(tmp_path, xml)
+    assert main(["frames", str(path)]) == 0 and "Pick" in capsys.readouterr().out
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    at = xml.index(where)
+    line = xml.count("\n", 0, at) + 1
+    col = at - (xml.rfind("\n", 0, at) + 1) + 1
+    assert "buildNumber given twice" in err and f"cell.installation:{line}:{col}: " in err, err
+
+
+@pytest.mark.parametrize("edit, where", [
+    (lambda x: x.replace("</Features>", "<</Features>"), "<</Features>"),
+    (lambda x: x + "<", None),
+    (lambda x: x.replace("<Features>", "<Features>< a>"), "< a>"),
+    (lambda x: x.replace("<Features>", "<Features><!-- <Features> -->"), None),
+])
+def test_every_lone_angle_bracket_is_an_error_and_a_comment_hides_nothing(tmp_path, capsys,
+                                                                          edit, where):
+    """The scan's one pass finds every '<': one that begins no tag is an
+    error at its place; a comment's text is never read as tags."""
+    xml = edit(ur_cell.XML)
+    path = write(tmp_path, xml)
+    code = main(["frames", str(path)])
+    out, err = capsys.readouterr()
+    if "<!--" in xml:
+        assert code == 0 and "Pick" in out, err
+        return
+    assert code == 2 and "a '<' that begins no tag" in err, err
+    at = xml.rindex("<") if where is None else xml.index(where)
+    line = xml.count("\n", 0, at) + 1
+    col = at - (xml.rfind("\n", 0, at) + 1) + 1
+    assert f"cell.installation:{line}:{col}: " in err, err
+
+
+def test_a_point_features_numbers_made_later_are_the_ones_read_at_once():
+    """A listing takes a point feature's pose without a Number for each;
+    the numbers a patch asks for later are those the careful reader makes,
+    and give the same pose."""
+    doc = Document(ur_cell.installation(ur_cell.XML), "cell.installation")
+    cf = installation.parse(doc)
+    pick = next(f for f in cf.frames if f.name == "Pick")
+    node = next(e for e in installation.walk(installation.scan(doc))
+                if e.tag == "GeomPoseNode" and e.get("name") == "Pick")
+    eager = installation.point_numbers(doc, node)
+    assert pick.numbers == eager and dict(pick.numbers.items()) == eager
+    assert sorted(pick.numbers) == sorted(eager) and len(pick.numbers) == 6
+    assert all(doc.slice(n.span) == n.text for n in pick.numbers.values())
+    assert installation.pose_of(pick.numbers).as_dict() == pick.pose.as_dict()

@@ -87,11 +87,18 @@ def shown_difference(new: float, old: float, digits: int, wrap: bool = False) ->
 
 def table(headers: Sequence[str], rows: Iterable[Sequence[Any]], right: set[int] | None = None) -> str:
     rows = [[str(c) for c in r] for r in rows]
+    right = right if right is not None else set()
+    if all(len(r) == len(headers) for r in rows):
+        # one format per line (a listing of a few hundred frames is a table of thousands
+        # of cells, formatted on every run of a command that reads one file)
+        widths = [max(map(len, column)) for column in zip(headers, *rows)]
+        form = "  ".join(f"{{:{'>' if i in right else '<'}{w}}}" for i, w in enumerate(widths))
+        return "\n".join(form.format(*r).rstrip()
+                         for r in [list(headers), ["-" * w for w in widths], *rows])
     widths = [len(h) for h in headers]
     for r in rows:
         for i, c in enumerate(r):
             widths[i] = max(widths[i], len(c))
-    right = right if right is not None else set()
 
     def line(cells):
         out = []

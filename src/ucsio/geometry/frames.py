@@ -105,15 +105,62 @@ class Number(Value):
         return self.lead + "".join(self.text.split())
 
 
-class ShiftedNumbers:
+class _NumbersMadeLater:
+    """A frame's numbers (component -> Number) made only when asked for;
+    reads as the dict it stands for (equal to it, same keys and values).
+    Listing a file never asks: its frames' poses are read without a Number
+    for each; a patch, a diff or ``check`` does. ``_numbers`` makes them."""
+
+    __slots__ = ("_made",)
+
+    def _numbers(self) -> dict[str, Number]:
+        raise NotImplementedError
+
+    def __getitem__(self, key: str) -> Number:
+        return self._numbers()[key]
+
+    def __iter__(self):
+        return iter(self._numbers())
+
+    def __len__(self) -> int:
+        return len(self._numbers())
+
+    def __contains__(self, key) -> bool:
+        return key in self._numbers()
+
+    def __bool__(self) -> bool:
+        return bool(self._numbers())
+
+    def keys(self):
+        return self._numbers().keys()
+
+    def values(self):
+        return self._numbers().values()
+
+    def items(self):
+        return self._numbers().items()
+
+    def get(self, key, default=None):
+        return self._numbers().get(key, default)
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, _NumbersMadeLater):
+            other = other._numbers()
+        return self._numbers() == other
+
+    __hash__ = None         # type: ignore[assignment]  - a mapping, as the dict it stands for
+
+    def __repr__(self) -> str:
+        return repr(self._numbers())
+
+
+class ShiftedNumbers(_NumbersMadeLater):
     """A frame's numbers where its text repeats another element's (a
     sysframe.va lists hundreds of identical default entries): the other's
-    Numbers moved ``delta`` characters on, made only when a span is asked
-    for. Listing a file never asks; a patch or a diff does. Reads as the
-    dict it stands for (equal to it, same keys and values); ``base`` holds
-    the values, which do not move."""
+    Numbers moved ``delta`` characters on. ``base`` holds the values, which
+    do not move, and the keys."""
 
-    __slots__ = ("base", "delta", "_made")
+    __slots__ = ("base", "delta")
 
     def __init__(self, base: dict[str, Number], delta: int):
         self.base, self.delta, self._made = base, delta, None
@@ -124,9 +171,6 @@ class ShiftedNumbers:
             self._made = {k: Number(Span(n.span.start + d, n.span.end + d), n.text, n.value)
                           for k, n in self.base.items()}
         return self._made
-
-    def __getitem__(self, key: str) -> Number:
-        return self._numbers()[key]
 
     def __iter__(self):
         return iter(self.base)
@@ -143,24 +187,21 @@ class ShiftedNumbers:
     def keys(self):
         return self.base.keys()
 
-    def values(self):
-        return self._numbers().values()
 
-    def items(self):
-        return self._numbers().items()
+class NumbersOnDemand(_NumbersMadeLater):
+    """A frame's numbers read from its text by ``read`` when first asked
+    for: a reader that took the pose from the same text (a Universal
+    Robots point feature) makes no Number for a listing."""
 
-    def get(self, key, default=None):
-        return self._numbers().get(key, default)
+    __slots__ = ("_read",)
 
-    def __eq__(self, other) -> bool:
-        if isinstance(other, ShiftedNumbers):
-            other = other._numbers()
-        return self._numbers() == other
+    def __init__(self, read):
+        self._read, self._made = read, None
 
-    __hash__ = None         # type: ignore[assignment]  - a mapping, as the dict it stands for
-
-    def __repr__(self) -> str:
-        return repr(self._numbers())
+    def _numbers(self) -> dict[str, Number]:
+        if self._made is None:
+            self._made, self._read = self._read(), None
+        return self._made
 
 
 def number_values(numbers) -> list[float]:

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 
 from ...geometry import rotations as rot
-from ...geometry.frames import Frame, Number, Pose, flange, robot
+from ...geometry.frames import Frame, Number, NumbersOnDemand, Pose, flange, robot
 from ...parsing import regex
 from ...parsing.document import Document, Span
 from ...parsing.model import ControllerFile
@@ -42,16 +42,21 @@ _MARKUP = regex.lazy(
     r"|(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
     r"(?P<attrs>(?:[^<>\"'/]|\"[^\"<]*\"|'[^'<]*'|/(?!>))*+)(?P<empty>/)?>)", 16)   # re.S
 _ATTR = regex.lazy(r"\s+(?P<name>[A-Za-z_][\w.:-]*)\s*=\s*(?:\"(?P<dq>[^\"<]*)\"|'(?P<sq>[^'<]*)')")
-# a tag whose attributes are well formed (nearly every one): matched once, its
-# attributes read without looking between them; any other markup goes through _MARKUP
-_TAG = regex.lazy(r"<(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
+# a tag whose attributes are well formed (nearly every one), matched once, its
+# attributes read when asked for; a '<' that begins no such tag matches alone,
+# and _MARKUP reads it
+_TAG = regex.lazy(r"<(?:(?P<close>/)?(?P<tag>[A-Za-z_][\w.:-]*)"
                   r"(?P<attrs>(?:\s+[A-Za-z_][\w.:-]*\s*=\s*(?:\"[^\"<]*\"|'[^'<]*'))*+)"
-                  r"\s*(?P<empty>/)?>")
+                  r"\s*(?P<empty>/)?>|)")     # or a '<' alone: _MARKUP reads it
 _NUMBER_TEXT = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
 _NUMBER = regex.lazy(_NUMBER_TEXT)
 # a whole value of 3 or 6 numbers (a position, a rotation vector, a TCP's offset), one
 # match for all: a file holds hundreds; any other value is read number by number
 _VALUES = {n: regex.lazy(",".join([rf"\s*({_NUMBER_TEXT})\s*"] * n)) for n in (3, 6)}
+# a tag whose one attribute is such a value (a point's toolPosition, toolAxisAngle):
+# its name and numbers read from the tag's text, with no dict of its attributes
+_ONLY_VALUE = {n: regex.lazy(r"\s+([A-Za-z_][\w.:-]*)\s*=\s*\"" + ",".join(
+    [rf"\s*({_NUMBER_TEXT})\s*"] * n) + '"') for n in (3, 6)}
 _SOURCE_FEATURE = regex.lazy(r"(?m)^[ \t]*sourceFeatureId[ \t]*=[ \t]*(?P<id>[^\s]+)")
 _ENTITIES = {"&lt;": "<", "&gt;": ">", "&amp;": "&", "&quot;": '"', "&apos;": "'"}
 
@@ -59,19 +64,21 @@ _ENTITIES = {"&lt;": "<", "&gt;": ">", "&amp;": "&", "&quot;": '"', "&apos;": "'
 class Element:
     """One XML element: its tag, its attributes (name -> (value, offset of
     the value's first character)), where its start tag stands, its children.
-    A tag of one attribute keeps its text, made a dict when first read: most
-    (joint values, the points' TCPs) never are, and a file has thousands."""
+    The attributes are kept as text and made a dict when first read (a name
+    given twice is an error then, as the .dtx reader does): most (joint
+    values, the points' TCPs, the safety settings) never are, and a file
+    has thousands. ``check`` reads every one."""
 
-    __slots__ = ("tag", "_attrs", "start", "children", "parent")
+    __slots__ = ("tag", "_attrs", "start", "children", "parent", "_doc")
 
-    def __init__(self, tag: str, attrs, start: int, parent: "Element | None"):
-        self.tag, self._attrs, self.start, self.parent = tag, attrs, start, parent
+    def __init__(self, tag: str, attrs, start: int, parent: "Element | None", doc=None):
+        self.tag, self._attrs, self.start, self.parent, self._doc = tag, attrs, start, parent, doc
         self.children: list[Element] = []
 
     @property
     def attrs(self) -> dict[str, tuple[str, int]]:
         if type(self._attrs) is tuple:
-            self._attrs = _attribute_dict(*self._attrs)
+            self._attrs = _attributes(self._doc, *self._attrs)
         return self._attrs
 
     def get(self, name: str) -> str | None:
@@ -79,7 +86,10 @@ class Element:
         return None if got is None else got[0]
 
     def child(self, tag: str) -> "Element | None":
-        return next((c for c in self.children if c.tag == tag), None)
+        for c in self.children:
+            if c.tag == tag:
+                return c
+        return None
 
 
 def sniff(doc: Document) -> bool:
@@ -91,36 +101,47 @@ def sniff(doc: Document) -> bool:
 
 
 def scan(doc: Document) -> Element:
-    """The element tree of the XML; an error at the first tag out of place."""
+    """The element tree of the XML; an error at the first tag out of place.
+    Well-formed tags (nearly every one) are found by one pass of ``_TAG``;
+    a '<' that begins none goes to ``_MARKUP`` (a comment, a declaration,
+    a tag whose attributes are not well formed: checked at once), and the
+    pass goes on after it."""
     text = doc.text
     root = Element("", {}, 0, None)
     top = root
-    # bound once: a file has thousands of tags
-    well_formed, markup, find = _TAG.match, _MARKUP.match, text.find
-    pos = find("<")
-    while pos >= 0:
-        m = well_formed(text, pos)
-        checked = m is not None
-        if not checked:
-            m = markup(text, pos)
-            if m is None:
-                raise doc.error("malformed XML: a '<' that begins no tag, comment or "
-                                "declaration", pos)
-        tag, close, empty = m.group("tag", "close", "empty")
-        if tag is not None:
+    tags, markup = _TAG.finditer, _MARKUP.match      # bound once: a file has thousands of tags
+    pos = 0
+    while True:
+        for m in tags(text, pos):
+            tag, close, empty = m.group("tag", "close", "empty")
+            if tag is None:                     # a '<' that begins no well-formed tag
+                at = m.start()
+                m = markup(text, at)
+                if m is None:
+                    raise doc.error("malformed XML: a '<' that begins no tag, comment or "
+                                    "declaration", at)
+                pos = m.end()
+                tag, close, empty = m.group("tag", "close", "empty")
+                if tag is None:                 # a comment, a declaration
+                    break
+                attrs = _attributes_checked(doc, m.group("attrs"), m.start("attrs"))
+            else:
+                attrs = None
             if close:
                 if top is root or top.tag != tag:
                     want = f"</{top.tag}>" if top is not root else "no end tag"
-                    raise doc.error(f"malformed XML: </{tag}> where {want} belongs", pos)
+                    raise doc.error(f"malformed XML: </{tag}> where {want} belongs", m.start())
                 top = top.parent
             else:
-                attrs = _attributes(doc, m) if checked else \
-                    _attributes_checked(doc, m.group("attrs"), m.start("attrs"))
-                element = Element(tag, attrs, pos, top)
+                element = Element(tag, attrs if attrs is not None else
+                                  (m.group("attrs"), m.start("attrs")), m.start(), top, doc)
                 top.children.append(element)
                 if not empty:
                     top = element
-        pos = find("<", m.end())
+            if attrs is not None:
+                break                           # on after the tag read the careful way
+        else:
+            break
     if top is not root:
         raise doc.error(f"malformed XML: <{top.tag}> is never closed", top.start)
     if len(root.children) != 1 or root.children[0].tag != "Installation":
@@ -129,15 +150,14 @@ def scan(doc: Document) -> Element:
     return root.children[0]
 
 
-def _attributes(doc: Document, m):
-    """A well-formed tag's attributes (``_TAG``): a dict, or where there is
-    one attribute (no name given twice) its text and offset, for
-    ``Element.attrs``."""
-    text, start = m.group("attrs"), m.start("attrs")
-    if text.count("=") == 1:
-        return (text, start)
+def _attributes(doc: Document, text: str, start: int) -> dict[str, tuple[str, int]]:
+    """A well-formed tag's attributes (``_TAG``'s): name -> (value, its
+    offset); where a name is given twice (or a value holds an "="), the
+    careful path, which says where."""
+    if not text:
+        return {}
     attrs = _attribute_dict(text, start)
-    if len(attrs) < text.count("="):        # a name given twice, or an "=" in a value
+    if len(attrs) < text.count("="):
         return _attributes_checked(doc, text, start)
     return attrs
 
@@ -172,11 +192,13 @@ def _attributes_checked(doc: Document, text: str, start: int) -> dict:
     return attrs
 
 
-def _numbers_matched(m, at: int, keys: tuple[str, ...], prefix: str) -> dict | None:
-    """The Numbers of a value ``_VALUES`` matched; None where one is not
-    finite (1e999: the slow path says which)."""
+def _numbers_matched(m, at: int, keys: tuple[str, ...], prefix: str,
+                     first: int = 1) -> dict | None:
+    """The Numbers of a value ``_VALUES`` (or ``_ONLY_VALUE``) matched, the
+    first number its group ``first``; None where one is not finite (1e999:
+    the slow path says which)."""
     out: dict[str, Number] = {}
-    for group, key in enumerate(keys, 1):
+    for group, key in enumerate(keys, first):
         body = m.group(group)
         value = float(body)
         if not math.isfinite(value):
@@ -199,6 +221,14 @@ def numbers_of(doc: Document, element: Element, attr: str, keys: tuple[str, ...]
     """The comma-separated numbers of ``element``'s ``attr`` as Numbers,
     one per key; an error at the attribute where they are not so many
     finite numbers."""
+    raw = element._attrs
+    only = _ONLY_VALUE.get(len(keys)) if type(raw) is tuple else None
+    if only is not None:
+        m = only.fullmatch(raw[0])
+        if m is not None and m.group(1) == attr:
+            out = _numbers_matched(m, raw[1], keys, prefix, 2)
+            if out is not None:
+                return out
     got = element.attrs.get(attr)
     if got is None:
         raise doc.error(f"<{element.tag}> without its {attr} attribute", element.start)
@@ -228,7 +258,11 @@ def numbers_of(doc: Document, element: Element, attr: str, keys: tuple[str, ...]
 
 def pose_of(numbers: dict[str, Number], prefix: str = "") -> Pose:
     """Metres and a rotation vector (radians) as ucsio's pose: mm, a quaternion."""
-    x, y, z, rx, ry, rz = (numbers[prefix + k].value for k in COMPONENTS)
+    return pose_of_values([numbers[prefix + k].value for k in COMPONENTS])
+
+
+def pose_of_values(values) -> Pose:
+    x, y, z, rx, ry, rz = values
     return Pose.from_quat(x * 1000.0, y * 1000.0, z * 1000.0, rot.rotvec_to_quat((rx, ry, rz)))
 
 
@@ -243,6 +277,25 @@ def point_numbers(doc: Document, node: Element, prefix: str = "") -> dict[str, N
     return out
 
 
+def point_values(doc: Document, node: Element) -> list[float]:
+    """``point_numbers``' six values without a Number for each (what a
+    listing needs): each tag's one attribute ``value`` of three finite
+    numbers read at once; ``point_numbers`` reads anything else, and says
+    what is wrong with it."""
+    out: list[float] = []
+    fullmatch = _ONLY_VALUE[3].fullmatch
+    for attr_tag in ("toolPosition", "toolAxisAngle"):
+        child = node.child(attr_tag)
+        raw = child._attrs if child is not None else None
+        m = fullmatch(raw[0]) if type(raw) is tuple else None
+        if m is None or m.group(1) != "value":
+            return [n.value for n in point_numbers(doc, node).values()]
+        out += (float(v) for v in m.group(2, 3, 4))
+    if not all(math.isfinite(v) for v in out):
+        return [n.value for n in point_numbers(doc, node).values()]
+    return out
+
+
 def parse(doc: Document, full: bool = False) -> ControllerFile:
     """An installation's TCPs and features. ``full`` (check) reads the same,
     the scan checking every tag either way, and also says whether this
@@ -253,6 +306,9 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     # the whole text, which a command that only reads the file does not need
     if full and doc.gzip is not None and doc.gzip.refusal is not None:
         cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
+    if full:                    # every tag's attributes, a name given twice an error
+        for element in walk(root):
+            element.attrs
     cf.extra["safety_features"] = _safety_features(root, doc)
     for element in walk(root):
         if element.tag == "tcp" and element.parent is not None \
@@ -298,15 +354,18 @@ def _tcp(doc: Document, element: Element) -> Frame:
 def _feature(doc: Document, cf: ControllerFile, element: Element) -> Frame:
     type_ = FEATURES[element.tag]
     if type_ == "POINT":
-        numbers = point_numbers(doc, element)
+        pose = pose_of_values(point_values(doc, element))
+        numbers = NumbersOnDemand(lambda: point_numbers(doc, element))
     else:
         numbers = point_numbers(doc, point_node(doc, element, "firstPoint"))
         for tag in PLANE_POINTS:
             numbers.update(point_numbers(doc, point_node(doc, element, tag), tag + "."))
-    info = {"id": element.get("id")}
-    if element.get("id") in cf.extra["safety_features"]:
+        pose = pose_of(numbers)
+    ident = element.get("id")
+    info = {"id": ident}
+    if ident in cf.extra["safety_features"]:
         info["safety"] = True
-    frame = _frame(doc, element, type_, numbers, pose_of(numbers), "world", robot(), info)
+    frame = _frame(doc, element, type_, numbers, pose, "world", robot(), info)
     if type_ == "PLANE":
         _check_plane(cf, frame, element)
     return frame
