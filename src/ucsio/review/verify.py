@@ -54,7 +54,8 @@ def _reread_declaration(result: PatchResult) -> tuple[Frame, ControllerFile] | N
         return None
     i = bisect.bisect_right(starts, end)
     stop = (starts[i] if i < len(starts) else len(old)) + len(new) - len(old)
-    text = vendor.as_module(new[begin:stop])     # RAPID: a declaration needs its module
+    # RAPID: a declaration needs its module; a FANUC listing's element, its record's head
+    text = vendor.as_module(new[begin:stop], new[:begin])
     try:
         cf = parse(Document(text.encode(doc.encoding), doc.path))
         again = cf.frame(frame.name) if cf.vendor == frame.vendor else None

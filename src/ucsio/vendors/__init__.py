@@ -110,7 +110,7 @@ class Defaults:
         from .common.write import read_again
         return read_again(cf, frame)
 
-    def as_module(self, text: str) -> str:
+    def as_module(self, text: str, before: str = "") -> str:
         return text                 # a declaration's text reads as a file as it is
 
     # why ``patch`` refuses every frame of its files, where it does (a stated reason,

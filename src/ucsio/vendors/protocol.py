@@ -67,8 +67,8 @@ class Vendor(Protocol):
     where: Callable[[Frame], dict] | None
     # (patched cf, frame) -> ``frame`` in the patched text
     read_again: Callable[[ControllerFile, Frame], Frame] | None
-    # one declaration's text -> a file the vendor's grammar reads
-    as_module: Callable[[str], str] | None
+    # (one declaration's text, the text before it) -> a file the vendor's grammar reads
+    as_module: Callable[[str, str], str] | None
 
     # ``declaration_end(text, last)``: the end of a declaration whose last number ends
     # at ``last``; None: a declaration is not read back alone (the whole file)

@@ -51,7 +51,7 @@ class Abb(Defaults):
         from .write import declaration_end
         return declaration_end(text, last)
 
-    def as_module(self, text: str) -> str:
+    def as_module(self, text: str, before: str = "") -> str:
         from .write import as_module
         return as_module(text)
 

@@ -57,7 +57,15 @@ class Fanuc(Defaults):
     native_keys = ("x", "y", "z", "w", "p", "r")
     same_rotation_tolerance = 2.5e-4    # deg: a quarter of the written step (0.001 deg)
     readback_angle = 1e-3               # deg: W, P, R to 0.001 deg read back within this
-    # a program's PR lines stand above the frame's: verified by reading the whole file
+    # a listing's frame is read back from its element under its record's head; a
+    # program's PR lines stand above the frame's: verified by reading the whole file
+    def declaration_end(self, text: str, last: int) -> int:
+        from .write import declaration_end
+        return declaration_end(text, last)
+
+    def as_module(self, text: str, before: str = "") -> str:
+        from .write import as_module
+        return as_module(text, before)
 
     def plan_changes(self, frame, pose):
         from .write import plan

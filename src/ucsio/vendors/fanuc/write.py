@@ -34,6 +34,30 @@ READBACK_FANUC_ANGLE_DEG = 1e-3
 # with the rounding it still reads back.
 SAME_ROTATION = 0.25 * 10.0 ** -FANUC_DECIMALS
 
+# -- one element read back (a listing) -------------------------------------------------
+
+def declaration_end(text: str, last: int) -> int:
+    """A listing's frame element is read back up to the line of its last
+    number (R); a TP program's frame is not read back alone (-1: the whole
+    file), its PR lines standing above the frame's."""
+    return -1 if text[:256].lstrip("\ufeff \t\r\n").startswith("/PROG") else last
+
+
+def as_module(text: str, before: str) -> str:
+    """An element of a listing (``text``, from its ``[g,n] =`` line) under
+    its record's head, the last head line in ``before``: a listing the
+    grammar reads, the frame named as in the file. Without a head, the text
+    as it is (it does not read back, and the whole file is read instead)."""
+    from .va import _HEAD_LINE
+    end = len(before)
+    while end > 0:
+        start = before.rfind("\n", 0, end - 1) + 1      # the line before ``end``
+        if _HEAD_LINE.match("\n" + before[start:end]) is not None:
+            return before[start:end] + text
+        end = start
+    return text
+
+
 LISTING_WARNING = ("the controller does not load .va files: this copy of the listing is for "
                    "review (a TP program sets the frame: `ucsio patch PROGRAM.ls` or "
                    "`ucsio program`)")
