@@ -1,7 +1,7 @@
 """A patched listing's frame is read back from its element under its
 record's head (``vendors.fanuc.write.as_module``), not from the whole file
 again: what the whole file's read-back accepts and refuses, it accepts and
-refuses, on every frame of the corpus's listings; where the element alone
+refuses, on sampled frames of every corpus listing; where the element alone
 does not read back, the whole file is read as before."""
 from __future__ import annotations
 

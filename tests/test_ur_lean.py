@@ -122,3 +122,11 @@ def test_a_point_features_numbers_made_later_are_the_ones_read_at_once():
     assert sorted(pick.numbers) == sorted(eager) and len(pick.numbers) == 6
     assert all(doc.slice(n.span) == n.text for n in pick.numbers.values())
     assert installation.pose_of(pick.numbers).as_dict() == pick.pose.as_dict()
+
+
+def test_the_scan_lists_every_element_in_the_walks_order():
+    doc = Document(ur_cell.installation(ur_cell.XML), "cell.installation")
+    root, every = installation.scan_all(doc)
+    walked = list(installation.walk(root))
+    assert len(walked) > 50 and len(every) == len(walked)
+    assert all(a is b for a, b in zip(every, walked))

@@ -101,14 +101,23 @@ def sniff(doc: Document) -> bool:
 
 
 def scan(doc: Document) -> Element:
-    """The element tree of the XML; an error at the first tag out of place.
-    Well-formed tags (nearly every one) are found by one pass of ``_TAG``;
-    a '<' that begins none goes to ``_MARKUP`` (a comment, a declaration,
-    a tag whose attributes are not well formed: checked at once), and the
-    pass goes on after it."""
+    """The element tree of the XML (its root, <Installation>); an error at
+    the first tag out of place."""
+    return scan_all(doc)[0]
+
+
+def scan_all(doc: Document) -> tuple[Element, list[Element]]:
+    """The element tree's root and every element below it in document order
+    (``walk``'s order, without walking the tree again). Well-formed tags
+    (nearly every one) are found by one pass of ``_TAG``; a '<' that begins
+    none goes to ``_MARKUP`` (a comment, a declaration, a tag whose
+    attributes are not well formed: checked at once), and the pass goes on
+    after it."""
     text = doc.text
     root = Element("", {}, 0, None)
     top = root
+    every: list[Element] = []
+    add = every.append
     tags, markup = _TAG.finditer, _MARKUP.match      # bound once: a file has thousands of tags
     pos = 0
     while True:
@@ -136,6 +145,7 @@ def scan(doc: Document) -> Element:
                 element = Element(tag, attrs if attrs is not None else
                                   (m.group("attrs"), m.start("attrs")), m.start(), top, doc)
                 top.children.append(element)
+                add(element)
                 if not empty:
                     top = element
             if attrs is not None:
@@ -147,7 +157,7 @@ def scan(doc: Document) -> Element:
     if len(root.children) != 1 or root.children[0].tag != "Installation":
         raise doc.error("not a Universal Robots installation: its root element is not "
                         "<Installation>", root.children[0].start if root.children else 0)
-    return root.children[0]
+    return root.children[0], every[1:]
 
 
 def _attributes(doc: Document, text: str, start: int) -> dict[str, tuple[str, int]]:
@@ -290,8 +300,8 @@ def point_values(doc: Document, node: Element) -> list[float]:
         m = fullmatch(raw[0]) if type(raw) is tuple else None
         if m is None or m.group(1) != "value":
             return [n.value for n in point_numbers(doc, node).values()]
-        out += (float(v) for v in m.group(2, 3, 4))
-    if not all(math.isfinite(v) for v in out):
+        out += map(float, m.group(2, 3, 4))
+    if not max(map(abs, out)) < math.inf:     # 1e999: point_numbers says where
         return [n.value for n in point_numbers(doc, node).values()]
     return out
 
@@ -301,16 +311,16 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     the scan checking every tag either way, and also says whether this
     Python's zlib writes the stream back (``gzip-stream``)."""
     cf = ControllerFile(doc, VENDOR)
-    root = scan(doc)
+    root, every = scan_all(doc)
     # check's (``full``): whether this zlib writes the stream back costs a deflate of
     # the whole text, which a command that only reads the file does not need
     if full and doc.gzip is not None and doc.gzip.refusal is not None:
         cf.lint(0, "gzip-stream", doc.gzip.refusal, "info")
     if full:                    # every tag's attributes, a name given twice an error
-        for element in walk(root):
+        for element in every:
             element.attrs
     cf.extra["safety_features"] = _safety_features(root, doc)
-    for element in walk(root):
+    for element in every:
         if element.tag == "tcp" and element.parent is not None \
                 and element.parent.tag == "availablePoses":
             cf.frames.append(_tcp(doc, element))

@@ -27,9 +27,8 @@ def read(vendor, path: str, config, tool: str, wobj: str, load) -> RobotPoses:
     if cf.vendor != vendor.name:
         raise UcsioError("not a Universal Robots installation", file=path)
     doc = cf.document
-    root = ins.scan(doc)
     poses = []
-    for element in ins.walk(root):
+    for element in ins.scan_all(doc)[1]:
         if element.tag not in ins.FEATURES or element.get("name") is None \
                 or element.get("hiddenSubFeature") == "true":
             continue
