@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from ucsio.geometry import rotations as rot
+from ucsio.geometry.frames import Pose
 
 robomath = pytest.importorskip("robodk.robomath")
 
@@ -376,3 +377,26 @@ def test_array_conventions_vs_scipy_and_the_single_pose_forms():
     a, b = Rotation.random(50, random_state=rng), Rotation.random(50, random_state=rng)
     np.testing.assert_allclose(arrays.rotation_angle_deg(a.as_matrix(), b.as_matrix()),
                                np.degrees((a.inv() * b).magnitude()), atol=1e-9)
+
+
+def test_the_three_point_construction_gives_the_frame_its_points_came_from():
+    """``Pose.from_three_points`` (the readers' and writers' construction)
+    against scipy: the origin, a point on +X and any point on the +Y side
+    of the XY plane give the frame back; collinear points give None; and it
+    agrees with ``method.three_points.construct`` (solve's, in numpy)."""
+    from ucsio.method.three_points import construct
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        r = Rotation.random(random_state=rng)
+        t = rng.uniform(-2000, 2000, 3)
+        m = r.as_matrix()
+        d, a, b = rng.uniform(1, 500), rng.uniform(-500, 500), rng.uniform(1, 500)
+        org, xx, xy = t, t + d * m[:, 0], t + a * m[:, 0] + b * m[:, 1]
+        pose = Pose.from_three_points(org.tolist(), xx.tolist(), xy.tolist())
+        assert np.allclose(pose.t, t, atol=1e-9)
+        assert (r.inv() * Rotation.from_quat(np.roll(pose.q, -1))).magnitude() < 1e-9
+        R, origin = construct(org, xx, xy)
+        assert np.allclose(np.array(pose.matrix), R, atol=1e-12) and np.allclose(origin, t)
+        assert Pose.from_three_points(org.tolist(), xx.tolist(), (t + 3 * (xx - t)).tolist()) \
+            is None
+    assert Pose.from_three_points((1, 2, 3), (1, 2, 3), (4, 5, 6)) is None

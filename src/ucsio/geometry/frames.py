@@ -6,6 +6,7 @@ numbers, so the patcher can replace exactly those and nothing else.
 """
 from __future__ import annotations
 
+import math
 
 from . import rotations as rot
 from ..parsing.document import Document, Span
@@ -40,6 +41,25 @@ class Pose(Value):
         """FANUC W, P, R: R = Rz(R) Ry(P) Rx(W), the KUKA matrix with A=R,
         B=P, C=W (so ``abc`` is (R, P, W) as written)."""
         return cls.from_abc(x, y, z, r, p, w)
+
+    @classmethod
+    def from_three_points(cls, org, xx, xy) -> "Pose | None":
+        """A pendant's 3-point construction (origin ORG, a point XX on +X, a
+        point XY in the XY plane on the +Y side): x along ORG->XX, z = x ×
+        (XY - ORG), y = z × x, the origin at ORG; None where the points are
+        (nearly) collinear. (``method.three_points.construct`` is the same in
+        numpy, for ``solve``; readers and writers take this one, light.)"""
+        x = [b - a for a, b in zip(org, xx)]
+        to_xy = [b - a for a, b in zip(org, xy)]
+        z = _cross(x, to_xy)
+        nx, nz = _norm(x), _norm(z)
+        if nx == 0.0 or nz <= 1e-9 * nx * max(_norm(to_xy), 1e-300):
+            return None
+        x = [c / nx for c in x]
+        z = [c / nz for c in z]
+        y = _cross(z, x)
+        return cls.from_matrix(((x[0], y[0], z[0]), (x[1], y[1], z[1]), (x[2], y[2], z[2])),
+                               tuple(org))
 
     @classmethod
     def from_matrix(cls, m, t) -> "Pose":
@@ -81,6 +101,14 @@ class Pose(Value):
         a, b, c = self.abc
         return {"x": self.x, "y": self.y, "z": self.z, "a": a, "b": b, "c": c,
                 "q": list(self.q)}
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _norm(v) -> float:
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
 
 class Number(Value):

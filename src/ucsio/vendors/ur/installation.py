@@ -395,26 +395,11 @@ def taught_positions(frame: Frame) -> list[tuple[float, float, float]]:
             for tag in TAUGHT]
 
 
-def construct(org, xx, xy) -> Pose | None:
-    """The 3-point construction (origin, +X, XY): x along ORG->XX, z = x ×
-    (XY - ORG), y = z × x; None where the points are (nearly) collinear."""
-    x = _sub(xx, org)
-    z = _cross(x, _sub(xy, org))
-    nx, nz = _norm(x), _norm(z)
-    if nx == 0.0 or nz <= 1e-9 * nx * max(_norm(_sub(xy, org)), 1e-300):
-        return None
-    x = [c / nx for c in x]
-    z = [c / nz for c in z]
-    y = _cross(z, x)
-    m = ((x[0], y[0], z[0]), (x[1], y[1], z[1]), (x[2], y[2], z[2]))
-    return Pose.from_matrix(m, org)
-
-
 def _check_plane(cf: ControllerFile, frame: Frame, element: Element) -> None:
     """The plane's frame (firstPoint) is the 3-point construction of its
     taught points: a lint where it is not (a file edited by hand, a frame
     written without its points)."""
-    built = construct(*taught_positions(frame))
+    built = Pose.from_three_points(*taught_positions(frame))
     if built is None:
         cf.lint(element.start, "plane-points", f"plane {frame.name}: its taught points are "
                 "collinear: they define no frame")
@@ -425,15 +410,3 @@ def _check_plane(cf: ControllerFile, frame: Frame, element: Element) -> None:
         cf.lint(element.start, "plane-points",
                 f"plane {frame.name}: its frame (firstPoint) is {moved:.3f} mm and "
                 f"{turned:.4f} deg from the 3-point construction of its taught points")
-
-
-def _sub(a, b):
-    return [p - q for p, q in zip(a, b)]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
-def _norm(v) -> float:
-    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])

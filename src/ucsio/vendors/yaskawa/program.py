@@ -342,22 +342,12 @@ def job_points(text: str) -> list[tuple[float, ...]]:
 
 
 def frame_from_points(org, xx, xy) -> Pose:
-    """The 3-point construction: origin ORG, x along ORG->XX, z = x × (XY -
-    ORG), y = z × x (XY fixes the plane and the +Y side)."""
-    x = _unit([b - a for a, b in zip(org, xx)])
-    z = _unit(_cross(x, [b - a for a, b in zip(org, xy)]))
-    y = _cross(z, x)
-    m = tuple(tuple(v[i] for v in (x, y, z)) for i in range(3))
-    return Pose.from_matrix(m, tuple(org))
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
-def _unit(v):
-    n = math.sqrt(sum(c * c for c in v))
-    return [c / n for c in v]
+    """The frame the controller builds from the written points (MFRAME: the
+    pendant's 3-point construction, ``Pose.from_three_points``)."""
+    got = Pose.from_three_points(org, xx, xy)
+    if got is None:
+        raise UcsioError("internal error: the written ORG, XX and XY are collinear")
+    return got
 
 
 def _read_back(text: str, pose: Pose, short: str) -> dict[str, float]:
