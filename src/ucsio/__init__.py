@@ -17,6 +17,14 @@ from __future__ import annotations
 __all__ = ["ControllerFile", "Document", "Frame", "Pose", "UcsioError", "load", "parse"]
 __version__ = "0.1.0"
 
+TYPE_CHECKING = False      # what the names below are, for readers and type checkers
+if TYPE_CHECKING:
+    from .errors import UcsioError
+    from .geometry.frames import Frame, Pose
+    from .parsing.controller import load, parse
+    from .parsing.document import Document
+    from .parsing.model import ControllerFile
+
 # The basics, imported when first asked for (PEP 562): the command line
 # imports ``ucsio.cli`` through this package, and imports made here would run
 # before it sets the collector's thresholds (``cli.entry``).
