@@ -211,3 +211,19 @@ def test_the_fast_path_reads_grown_listings_as_the_grammar_does(tmp_path):
         assert len(plain) > 5                # the distinct elements, read from their words
         fast = outcome(controller.parse, path)
         assert fast[0] == "read" and fast == outcome(va.parse_whole, path)
+
+
+
+def test_an_element_a_kept_string_runs_over_is_read_once():
+    """A record's head whose string runs over its line end keeps the text up
+    to where the string closes (here: to the end of the file, the quotes
+    pairing across the elements): the elements in it are the grammar's to
+    read, not also read from their words or shared; they were listed twice
+    (the fuzz campaign's fixtures/fuzz/007). The fast path lists what the
+    whole tree does."""
+    raw = (FIXTURES / "fuzz" / "007--head_string_over_the_elements.va").read_bytes()
+    fast = va.parse(Document(raw, "sysframe.va"))
+    names = [f.name for f in fast.frames]
+    assert names == ["UT1", "UT2", "UT1@2", "UT2@2"]
+    assert snapshot(fast) == snapshot(va.parse_whole(Document(raw, "sysframe.va")))
+    assert not [lint for lint in fast.lints if lint.code == "duplicate-frame"]

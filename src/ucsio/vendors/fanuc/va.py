@@ -39,6 +39,7 @@ the corpus, tests/test_va_listings.py on generated and mutated listings).
 """
 from __future__ import annotations
 
+import bisect
 import re
 
 from ...errors import UcsioError
@@ -136,6 +137,7 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict, dict]:
     shared: dict[int, tuple[str, int, int]] = {}
     plain: dict[int, tuple[str, Entry]] = {}
     seen: dict[str, tuple[int, int]] = {}
+    extent: dict[int, tuple[int, int]] = {}     # a left-out element's text (INDEX offset ->)
     first = _FIRST.search(text)
     if first is not None:
         s = text.rfind("\n", 0, first.start()) + 1
@@ -145,30 +147,54 @@ def outline(text: str, wanted) -> tuple[list[tuple[int, int]], dict, dict]:
         head_end = _kept_end(text, start)
         how = wanted(name)
         if how == "record":
-            spans += _record_spans(text, nl, start, end, seen, shared, plain)
+            spans += _record_spans(text, nl, start, end, seen, shared, plain, extent)
         else:
             spans.append((start, head_end))
             if how == "comments":
                 for m in _COMMENT_FIELD.finditer(nl, head_end + 1, end + 1):
                     s = m.start()           # the "\n" in nl: the line's start in text
                     spans.append((s, _kept_end(text, m.end() - 3)))    # from its quote on
+    merged = _merged(spans)
+    # A kept span may run over an element left out (a head whose string runs over its
+    # line end keeps the text up to where the string closes): the grammar reads such an
+    # element, so it is not read from its words or shared as well (it would be listed
+    # twice). Kept whole, and the spans merged again, until none is left half read.
+    while True:
+        starts = [s for s, _ in merged]
+        covered = []
+        for index, (s, e) in extent.items():
+            i = bisect.bisect_right(starts, e - 1) - 1      # the last span starting before e
+            if i >= 0 and merged[i][1] > s:
+                covered.append(index)
+        if not covered:
+            return merged, shared, plain
+        for index in covered:
+            merged.append(extent.pop(index))
+            shared.pop(index, None)
+            plain.pop(index, None)
+        merged = _merged(merged)
+
+
+def _merged(spans: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """Spans sorted, those that overlap or touch made one."""
     merged: list[tuple[int, int]] = []
     for s, e in sorted(spans):              # the first line is a record's head, say
         if merged and s <= merged[-1][1]:
             merged[-1] = (merged[-1][0], max(merged[-1][1], e))
         else:
             merged.append((s, e))
-    return merged, shared, plain
+    return merged
 
 
 def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
-                  shared: dict, plain: dict) -> list[tuple[int, int]]:
+                  shared: dict, plain: dict, extent: dict) -> list[tuple[int, int]]:
     """A frame record's text as spans, each element left out where an
     earlier element of the file wrote exactly the same after its "="
     (``seen``: that text -> (INDEX offset, offset after the "=") of the
     first; ``shared`` gets the later ones), or where it is written as the
-    controller writes one (``_PLAIN``: ``plain`` gets its Entry). ``nl``:
-    "\n" + ``text``."""
+    controller writes one (``_PLAIN``: ``plain`` gets its Entry); ``extent``
+    gets each left-out element's text (line start, end). ``nl``: "\n" +
+    ``text``."""
     fullmatch = _PLAIN.fullmatch
     # (line start, INDEX offset, INDEX text, offset after the "="), in text offsets
     marks = [(m.start(), m.start(1) - 1, m.group(1), m.end() - 1)
@@ -187,6 +213,7 @@ def _record_spans(text: str, nl: str, start: int, end: int, seen: dict,
             if m is None:
                 continue                # the grammar reads it
             plain[index] = (key, _plain_entry(m))
+        extent[index] = (line, tail_end)
         spans.append((pos, line))
         pos = tail_end
     spans.append((pos, end))
