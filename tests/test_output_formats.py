@@ -426,7 +426,7 @@ CODES_EVER = [
     "after-end", "unread-line",
     "lf-only", "group-flags", "angle-range", "duplicate-block", "track-position", "unknown-line",
     "npos-count", "basicfrm-parent",
-    "plane-points", "gzip-stream",
+    "plane-points", "gzip-stream", "unread-feature",
     "father-missing", "father-circle", "father-kind", "entry-index",
     "syntax-error", "unreadable", "round-trip",
 ]

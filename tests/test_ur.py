@@ -394,3 +394,23 @@ def test_solve_robot_recovers_a_ucs_from_taught_point_features(tmp_path, capsys)
     np.testing.assert_allclose([f["x"], f["y"], f["z"]], ucs_t, atol=1e-6)
     got = Rotation.from_quat(np.roll(f["q"], -1))
     assert np.degrees((got.inv() * ucs_r).magnitude()) < 1e-7
+
+
+def test_a_line_feature_is_named_by_check_and_not_listed(tmp_path, capsys):
+    """A line (GeomLineNode) is no feature ucsio reads: frames leaves it
+    out, check names it (an info), and patch finds no frame by its name."""
+    line = ('<GeomLineNode>\n      <GeomLineNode name="Conveyor" showAxes="true" '
+            'id="c0000000-0000-4000-8000-000000000000"/>\n    </GeomLineNode>\n    ')
+    xml = ur_cell.XML.replace("<GeomPoseNode>", line + "<GeomPoseNode>", 1)
+    path = tmp_path / "cell.installation"
+    path.write_bytes(ur_cell.installation(xml))
+    code, out, err = cli(capsys, "frames", path)
+    assert code == 0 and "Pick" in out and "Conveyor" not in out, err
+    code, out, err = cli(capsys, "check", path, "--json")
+    lints = [x for f in json.loads(out)["files"] for x in f["lints"]]
+    assert code == 0 and [(x["code"], x["severity"]) for x in lints] == [("unread-feature", "info")]
+    assert "'Conveyor' is a line (GeomLineNode)" in lints[0]["message"]
+    at = xml.index('<GeomLineNode name="Conveyor"')
+    assert lints[0]["line"] == xml.count("\n", 0, at) + 1
+    code, out, err = cli(capsys, "patch", path, "--frame", "Conveyor", "--set", "1,2,3,0,0,0")
+    assert code == 2 and "no frame named 'Conveyor': it is a line (GeomLineNode)" in err, err

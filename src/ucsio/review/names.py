@@ -25,6 +25,11 @@ def find_frame(cf: ControllerFile, name: str) -> Frame:
     try:
         return cf.frame(name)
     except UcsioError as exc:
+        # something of that name the reader knows and does not read (a UR line feature)
+        unread = (cf.extra.get("unread") or {}).get(name.strip().casefold())
+        if unread is not None:
+            raise UcsioError(f"no frame named {name.strip()[:40]!r}: {unread}",
+                             file=exc.file) from None
         why = outside(cf, name)
         if why is None:
             raise

@@ -324,9 +324,20 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
         if element.tag == "tcp" and element.parent is not None \
                 and element.parent.tag == "availablePoses":
             cf.frames.append(_tcp(doc, element))
-        elif element.tag in FEATURES and element.get("name") is not None \
-                and element.get("hiddenSubFeature") != "true":
-            cf.frames.append(_feature(doc, cf, element))
+        elif element.tag in FEATURES:
+            if element.get("name") is not None and element.get("hiddenSubFeature") != "true":
+                cf.frames.append(_feature(doc, cf, element))
+        elif element.tag[:4] == "Geom" and element.tag[-4:] == "Node" \
+                and element.get("name") is not None:
+            # a line feature (GeomLineNode), or a kind PolyScope may add: named, so that
+            # a frame ucsio does not list is not taken for one the file does not hold
+            kind = element.tag[4:-4].lower() or element.tag
+            name = unescape(element.get("name"))
+            what = f"a {kind} ({element.tag}): ucsio reads point and plane features"
+            cf.lint(element.start, "unread-feature", f"feature {name!r} is {what}; not listed",
+                    "info")
+            cf.extra.setdefault("unread", {})[name.strip().casefold()] = \
+                f"it is {what} (line {doc.line_of(element.start)})"
     return cf
 
 
