@@ -227,3 +227,26 @@ def test_an_element_a_kept_string_runs_over_is_read_once():
     assert names == ["UT1", "UT2", "UT1@2", "UT2@2"]
     assert snapshot(fast) == snapshot(va.parse_whole(Document(raw, "sysframe.va")))
     assert not [lint for lint in fast.lints if lint.code == "duplicate-frame"]
+
+
+def test_an_element_repeating_one_a_string_swallowed_reads_as_the_whole_tree():
+    """A scalar record's string that runs over its line end into a frame
+    record swallows the elements there; a later element that repeats one
+    of them has no reading to share (a KeyError, an internal error, before):
+    the whole text is read instead, and the fast path says what the whole
+    tree says. Also where the string closes before the repeat."""
+    element = ("    [1,{n}] = \n  Group: 1   Config: N U T, 0, 0, 0\n"
+               "  X:     1.000   Y:     2.000   Z:     3.000\n"
+               "  W:     0.000   P:     0.000   R:     0.000\n{tail}")
+    head = ("[*SYSTEM*]$MOTD  Storage: CMOS  Access: RW  : STRING[80] = 'WELCOME\n"
+            "[*SYSTEM*]$MNUTOOL  Storage: SHADOW  Access: RW  : ARRAY[1,3] OF POSITION\n")
+    for text in (head + element.format(n=1, tail=" END'\n") + element.format(n=2, tail=" END'\n"),
+                 head + element.format(n=1, tail=" END'\n") + element.format(n=2, tail="")
+                 + element.format(n=3, tail="")):
+        got = []
+        for read in (va.parse, va.parse_whole):
+            try:
+                got.append(snapshot(read(Document(text.encode(), "sysframe.va"))))
+            except UcsioError as exc:
+                got.append(str(exc))
+        assert got[0] == got[1], got

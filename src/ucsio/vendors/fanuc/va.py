@@ -261,7 +261,10 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
             return _whole(doc, text, lark_first=True, beside=beside)
     spans, shared, plain = outline(text, _frames_wanted)
     tree = _parse(doc, masked(text, spans))
-    return _interpret(doc, tree, shared, beside, plain)
+    try:
+        return _interpret(doc, tree, shared, beside, plain)
+    except _Unshared:
+        return _whole(doc, text, beside=beside)
 
 
 def _frames_wanted(name: str):
@@ -413,6 +416,12 @@ def records(tree: Tree, doc: Document, shared: dict | None = None,
     return out
 
 
+class _Unshared(Exception):
+    """An element the fast path left out repeats one the grammar did not
+    read as an element (a string over a line end swallowed it): there is no
+    reading to share, and the whole text is read instead."""
+
+
 def _rejoin(recs: list[Record], shared: dict, plain: dict, read: dict) -> None:
     """Put the elements the fast path left out back into their records, in
     file order: each read from its words with its Entry, each repeating an
@@ -421,7 +430,10 @@ def _rejoin(recs: list[Record], shared: dict, plain: dict, read: dict) -> None:
     heads = [r.head_pos for r in recs]
     touched = set()
     left_out = [(pos, key, read[pos], 0) for pos, (key, _e) in plain.items()]
-    left_out += [(pos, key, read[src], delta) for pos, (key, src, delta) in shared.items()]
+    for pos, (key, src, delta) in shared.items():
+        if src not in read:     # the element it repeats is no element to the grammar
+            raise _Unshared
+        left_out.append((pos, key, read[src], delta))
     for pos, key, entry, delta in left_out:
         i = bisect.bisect_right(heads, pos) - 1
         recs[i].members.append(Member("element", key, pos, entry, delta))
