@@ -260,10 +260,14 @@ def parse(doc: Document, full: bool = False, beside: bool = True) -> ControllerF
         except Rejected:
             return _whole(doc, text, lark_first=True, beside=beside)
     spans, shared, plain = outline(text, _frames_wanted)
-    tree = _parse(doc, masked(text, spans))
     try:
-        return _interpret(doc, tree, shared, beside, plain)
-    except _Unshared:
+        return _interpret(doc, _parse(doc, masked(text, spans)), shared, beside, plain)
+    except (UcsioError, _Unshared):
+        # The outline reads strings as the grammar does in every listing a controller
+        # writes; in a damaged one it may close a string elsewhere, and the blanked text
+        # then reads otherwise than the whole (an error where there is none, or an
+        # element that repeats one the grammar never read). The whole text says what
+        # is right: its frames, or its error.
         return _whole(doc, text, beside=beside)
 
 
@@ -419,7 +423,7 @@ def records(tree: Tree, doc: Document, shared: dict | None = None,
 class _Unshared(Exception):
     """An element the fast path left out repeats one the grammar did not
     read as an element (a string over a line end swallowed it): there is no
-    reading to share, and the whole text is read instead."""
+    reading to share, and the whole text is read instead (``parse``)."""
 
 
 def _rejoin(recs: list[Record], shared: dict, plain: dict, read: dict) -> None:
