@@ -32,8 +32,7 @@ def test_reading_deflates_nothing_and_check_still_proves_the_stream(tmp_path, mo
 
 
 def every_element(xml: str):
-    return list(installation.walk(installation.scan(Document(ur_cell.installation(xml),
-                                                             "cell.installation"))))
+    return installation.scan(Document(ur_cell.installation(xml), "cell.installation"))[1]
 
 
 def test_the_fast_attributes_are_the_careful_ones():
@@ -115,7 +114,7 @@ def test_a_point_features_numbers_made_later_are_the_ones_read_at_once():
     doc = Document(ur_cell.installation(ur_cell.XML), "cell.installation")
     cf = installation.parse(doc)
     pick = next(f for f in cf.frames if f.name == "Pick")
-    node = next(e for e in installation.walk(installation.scan(doc))
+    node = next(e for e in installation.scan(doc)[1]
                 if e.tag == "GeomPoseNode" and e.get("name") == "Pick")
     eager = installation.point_numbers(doc, node)
     assert pick.numbers == eager and dict(pick.numbers.items()) == eager
@@ -124,9 +123,14 @@ def test_a_point_features_numbers_made_later_are_the_ones_read_at_once():
     assert installation.pose_of(pick.numbers).as_dict() == pick.pose.as_dict()
 
 
-def test_the_scan_lists_every_element_in_the_walks_order():
+def test_the_scan_lists_every_element_in_the_trees_order():
+    """The scan's list is the tree below the root, depth first, in document order."""
+    def walk(element):
+        for child in element.children:
+            yield child
+            yield from walk(child)
     doc = Document(ur_cell.installation(ur_cell.XML), "cell.installation")
-    root, every = installation.scan_all(doc)
-    walked = list(installation.walk(root))
+    root, every = installation.scan(doc)
+    walked = list(walk(root))
     assert len(walked) > 50 and len(every) == len(walked)
     assert all(a is b for a, b in zip(every, walked))

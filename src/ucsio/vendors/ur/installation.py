@@ -100,19 +100,14 @@ def sniff(doc: Document) -> bool:
     return head.startswith("<Installation") and head[13:14] in (" ", ">", "/", "\t", "\n", "\r")
 
 
-def scan(doc: Document) -> Element:
-    """The element tree of the XML (its root, <Installation>); an error at
-    the first tag out of place."""
-    return scan_all(doc)[0]
-
-
-def scan_all(doc: Document) -> tuple[Element, list[Element]]:
-    """The element tree's root and every element below it in document order
-    (``walk``'s order, without walking the tree again). Well-formed tags
-    (nearly every one) are found by one pass of ``_TAG``; a '<' that begins
-    none goes to ``_MARKUP`` (a comment, a declaration, a tag whose
-    attributes are not well formed: checked at once), and the pass goes on
-    after it."""
+def scan(doc: Document) -> tuple[Element, list[Element]]:
+    """The element tree of the XML, its root <Installation>, and every
+    element below the root in document order (a list, not a walk of the
+    tree: hostile XML may nest deeper than Python's stack); an error at the
+    first tag out of place. Well-formed tags (nearly every one) are found by
+    one pass of ``_TAG``; a '<' that begins none goes to ``_MARKUP`` (a
+    comment, a declaration, a tag whose attributes are not well formed:
+    checked at once), and the pass goes on after it."""
     text = doc.text
     root = Element("", {}, 0, None)
     top = root
@@ -226,19 +221,25 @@ def unescape(value: str) -> str:
     return value
 
 
+def _only_value(element: Element | None, attr: str, n: int):
+    """``_ONLY_VALUE``'s match where ``element``'s one attribute is ``attr``
+    holding ``n`` numbers and its attributes are still text; else None."""
+    raw = element._attrs if element is not None else None
+    only = _ONLY_VALUE.get(n) if type(raw) is tuple else None
+    m = only.fullmatch(raw[0]) if only is not None else None
+    return m if m is not None and m.group(1) == attr else None
+
+
 def numbers_of(doc: Document, element: Element, attr: str, keys: tuple[str, ...],
                prefix: str = "") -> dict[str, Number]:
     """The comma-separated numbers of ``element``'s ``attr`` as Numbers,
     one per key; an error at the attribute where they are not so many
     finite numbers."""
-    raw = element._attrs
-    only = _ONLY_VALUE.get(len(keys)) if type(raw) is tuple else None
-    if only is not None:
-        m = only.fullmatch(raw[0])
-        if m is not None and m.group(1) == attr:
-            out = _numbers_matched(m, raw[1], keys, prefix, 2)
-            if out is not None:
-                return out
+    m = _only_value(element, attr, len(keys))
+    if m is not None:
+        out = _numbers_matched(m, element._attrs[1], keys, prefix, 2)
+        if out is not None:
+            return out
     got = element.attrs.get(attr)
     if got is None:
         raise doc.error(f"<{element.tag}> without its {attr} attribute", element.start)
@@ -293,12 +294,9 @@ def point_values(doc: Document, node: Element) -> list[float]:
     numbers read at once; ``point_numbers`` reads anything else, and says
     what is wrong with it."""
     out: list[float] = []
-    fullmatch = _ONLY_VALUE[3].fullmatch
     for attr_tag in ("toolPosition", "toolAxisAngle"):
-        child = node.child(attr_tag)
-        raw = child._attrs if child is not None else None
-        m = fullmatch(raw[0]) if type(raw) is tuple else None
-        if m is None or m.group(1) != "value":
+        m = _only_value(node.child(attr_tag), "value", 3)
+        if m is None:
             return [n.value for n in point_numbers(doc, node).values()]
         out += map(float, m.group(2, 3, 4))
     if not max(map(abs, out)) < math.inf:     # 1e999: point_numbers says where
@@ -311,7 +309,7 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
     the scan checking every tag either way, and also says whether this
     Python's zlib writes the stream back (``gzip-stream``)."""
     cf = ControllerFile(doc, VENDOR)
-    root, every = scan_all(doc)
+    root, every = scan(doc)
     # check's (``full``): whether this zlib writes the stream back costs a deflate of
     # the whole text, which a command that only reads the file does not need
     if full and doc.gzip is not None and doc.gzip.refusal is not None:
@@ -339,16 +337,6 @@ def parse(doc: Document, full: bool = False) -> ControllerFile:
             cf.extra.setdefault("unread", {})[name.strip().casefold()] = \
                 f"it is {what} (line {doc.line_of(element.start)})"
     return cf
-
-
-def walk(element: Element):
-    """Every element below ``element``, in document order; a loop, not
-    recursion: hostile XML may nest deeper than Python's stack."""
-    stack = list(reversed(element.children))
-    while stack:
-        child = stack.pop()
-        yield child
-        stack.extend(reversed(child.children))
 
 
 def _safety_features(root: Element, doc: Document) -> set[str]:

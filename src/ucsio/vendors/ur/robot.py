@@ -28,7 +28,7 @@ def read(vendor, path: str, config, tool: str, wobj: str, load) -> RobotPoses:
         raise UcsioError("not a Universal Robots installation", file=path)
     doc = cf.document
     poses = []
-    for element in ins.scan_all(doc)[1]:
+    for element in ins.scan(doc)[1]:
         if element.tag not in ins.FEATURES or element.get("name") is None \
                 or element.get("hiddenSubFeature") == "true":
             continue
